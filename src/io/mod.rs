@@ -1,0 +1,1 @@
+//! Readers and writers for Triangle's file formats (.node, .poly, .ele, .edge, .neigh).

@@ -1,0 +1,33 @@
+//! # idmesh
+//!
+//! Quality Delaunay meshes by incremental Delaunay refinement (Ruppert / Shewchuk style,
+//! implemented as in "An Incremental Delaunay Meshing Algorithm", §3 for 2D).
+//!
+//! * Output is **conforming Delaunay**: every input segment is a union of mesh edges and every
+//!   triangle's circumcircle is empty of mesh vertices.
+//! * Every geometric decision (orientation, in-circle, encroachment) is exact.
+//! * Bad input is reported as an [`Error`] naming the offending item; nothing panics.
+//!
+//! ```
+//! use idmesh::{Pslg, Options, triangulate};
+//! let mut pslg = Pslg::default();
+//! pslg.points = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+//! pslg.segments = vec![[0, 1], [1, 2], [2, 3], [3, 0]];
+//! let opts = Options { min_angle: Some(30.0), max_area: Some(0.01), ..Options::default() };
+//! let mesh = triangulate(&pslg, &opts).unwrap();
+//! assert!(mesh.triangles.len() >= 100);
+//! mesh.validate().unwrap();
+//! ```
+
+pub mod error;
+pub mod exact;
+pub mod ffi;
+pub mod geometry;
+pub mod input;
+pub mod io;
+pub mod mesh2d;
+pub mod predicates;
+
+pub use error::{Error, InputError};
+pub use input::{Pslg, Region};
+pub use mesh2d::{triangulate, Options, SizingFn, TriMesh, NONE};

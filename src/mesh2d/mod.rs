@@ -1,0 +1,112 @@
+//! The 2D mesher (paper §3): conforming Delaunay triangulation of a PSLG and Delaunay
+//! refinement to a minimum angle and maximum area.
+//!
+//! Pipeline: validate the input; insert every input point (Bowyer–Watson, BRIO/Hilbert order,
+//! walking point location); recover segments lazily by splitting (paper Fig. 2, `Force`);
+//! classify exterior, holes and regions by flooding up to segments; then eliminate skinny and
+//! oversized triangles (paper Fig. 4, `Provisional` circumcenter / off-center insertion).
+
+mod build;
+mod output;
+mod refine;
+mod store;
+mod validate;
+
+use std::fmt;
+use std::sync::Arc;
+
+pub use output::TriMesh;
+
+use crate::error::Error;
+use crate::input::Pslg;
+
+/// The "no index" value used in index arrays (for example a missing neighbour).
+pub const NONE: u32 = u32::MAX;
+
+/// A user sizing test, as Triangle's `triunsuitable`: called with the three corners of a
+/// triangle (counter-clockwise) and its area; returns `true` when the triangle is too large and
+/// must be split. It must be deterministic; it is called from the meshing thread only.
+pub type SizingFn = Arc<dyn Fn([f64; 2], [f64; 2], [f64; 2], f64) -> bool + Send + Sync>;
+
+/// Meshing options. `Options::default()` gives a conforming Delaunay triangulation of the PSLG
+/// with no quality or size refinement.
+#[derive(Clone)]
+pub struct Options {
+    /// Minimum angle in degrees (Triangle's `-q`). `None`: no angle refinement. Must lie in
+    /// `(0, 34]`; larger bounds may not terminate in theory (Triangle allows the same range with a
+    /// warning above 34). Triangles whose small angle sits between input segments meeting at less
+    /// than 60° are exempt. Default: `None`.
+    pub min_angle: Option<f64>,
+    /// Global maximum triangle area (Triangle's `-a<area>`). Default: `None`.
+    pub max_area: Option<f64>,
+    /// Apply each region's `max_area` (Triangle's `-a` without a number). Default: `false`.
+    pub region_max_area: bool,
+    /// Write each region's attribute to its triangles (Triangle's `-A`). Default: `false`.
+    pub region_attributes: bool,
+    /// Mesh the whole convex hull of the points instead of only the area enclosed by segments
+    /// (Triangle's `-c`). Without segments the convex hull is always meshed. Default: `false`.
+    pub convex_hull: bool,
+    /// Maximum number of Steiner points (Triangle's `-S<n>`). When reached, refinement stops and
+    /// the mesh is returned with [`TriMesh::complete`] set to `false`. Default: `None` (no cap
+    /// other than an internal safety cap of 2^31 vertices).
+    pub max_steiner: Option<u64>,
+    /// Forbid Steiner points on boundary segments (Triangle's `-Y`). The result is then
+    /// constrained Delaunay, not conforming Delaunay. Not implemented yet: setting it gives
+    /// [`Error::Unsupported`]. Default: `false`.
+    pub no_boundary_steiner: bool,
+    /// Use off-centers (Üngör) instead of circumcenters for skinny triangles: fewer triangles for
+    /// the same angle bound. Default: `true`.
+    pub off_centers: bool,
+    /// Resolve crossing segments by inserting their intersection point instead of reporting
+    /// [`crate::InputError::CrossingSegments`]. Default: `false`.
+    pub split_crossings: bool,
+    /// A user sizing test (Triangle's `-u`); see [`SizingFn`]. Default: `None`.
+    pub sizing: Option<SizingFn>,
+    /// Print progress lines to standard error during long runs. Default: `false`.
+    pub verbose: bool,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            min_angle: None,
+            max_area: None,
+            region_max_area: false,
+            region_attributes: false,
+            convex_hull: false,
+            max_steiner: None,
+            no_boundary_steiner: false,
+            off_centers: true,
+            split_crossings: false,
+            sizing: None,
+            verbose: false,
+        }
+    }
+}
+
+impl fmt::Debug for Options {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Options")
+            .field("min_angle", &self.min_angle)
+            .field("max_area", &self.max_area)
+            .field("region_max_area", &self.region_max_area)
+            .field("region_attributes", &self.region_attributes)
+            .field("convex_hull", &self.convex_hull)
+            .field("max_steiner", &self.max_steiner)
+            .field("no_boundary_steiner", &self.no_boundary_steiner)
+            .field("off_centers", &self.off_centers)
+            .field("split_crossings", &self.split_crossings)
+            .field("sizing", &self.sizing.as_ref().map(|_| "<fn>"))
+            .field("verbose", &self.verbose)
+            .finish()
+    }
+}
+
+/// Meshes a PSLG: conforming Delaunay triangulation of the domain enclosed by the segments
+/// (minus holes), refined to the options' angle and area bounds.
+///
+/// Returns an error naming the offending item for invalid input. When the Steiner cap is hit the
+/// mesh is still returned (valid and conforming) with `complete == false`.
+pub fn triangulate(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
+    build::run(pslg, opts)
+}

@@ -1,8 +1,622 @@
-//! Driver: validation, insertion of the input, segment recovery, classification, refinement.
-use super::{Options, TriMesh};
-use crate::error::Error;
-use crate::input::Pslg;
+//! The driver: input validation, insertion of the input points, segment recovery (the
+//! conforming stage, paper Fig. 3 step 2), classification of exterior, holes and regions, then
+//! refinement (step 3) and output.
 
-pub(super) fn run(_pslg: &Pslg, _opts: &Options) -> Result<TriMesh, Error> {
-    Err(Error::Unsupported("the 2D core is being written".into()))
+use super::refine::Refiner;
+use super::store::{Cdt, Inserted, Mode, Seg, Start, EXTERIOR, HOLE, NO_REGION};
+use super::{Options, TriMesh, NONE};
+use crate::error::{Error, InputError};
+use crate::input::Pslg;
+use crate::predicates::{orient2d, strictly_between};
+
+/// Coordinates beyond this magnitude could overflow circumcenter computations.
+const MAX_COORD: f64 = 1e150;
+
+pub(super) fn run(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
+    check_options(opts)?;
+    check_input(pslg)?;
+    let n = pslg.points.len();
+    let mut cdt = Cdt::new(&pslg.points);
+    insert_points(&mut cdt, &pslg.points)?;
+    let pieces = segment_pieces(pslg)?;
+    let mut r = Refiner::new(cdt, pslg, opts);
+    r.register_segments(&pieces)?;
+    r.drain_splits()?;
+    classify(&mut r, pslg, opts)?;
+    r.refine()?;
+    Ok(output(&r, n, pslg, opts))
+}
+
+fn check_options(o: &Options) -> Result<(), Error> {
+    if let Some(a) = o.min_angle {
+        if !(a > 0.0 && a <= 45.0) {
+            return Err(Error::InvalidOption(format!(
+                "minimum angle {a} must lie in (0, 45] degrees (termination is proven up to 20.7, \
+                 observed up to about 34)"
+            )));
+        }
+    }
+    if let Some(a) = o.max_area {
+        if !(a > 0.0 && a.is_finite()) {
+            return Err(Error::InvalidOption(format!(
+                "maximum area {a} must be positive and finite"
+            )));
+        }
+    }
+    if o.no_boundary_steiner {
+        return Err(Error::Unsupported(
+            "forbidding boundary Steiner points (-Y) is not implemented yet".into(),
+        ));
+    }
+    Ok(())
+}
+
+fn check_input(p: &Pslg) -> Result<(), Error> {
+    let n = p.points.len();
+    if n < 3 {
+        return Err(InputError::TooFewPoints { count: n }.into());
+    }
+    if n >= (NONE / 4) as usize {
+        return Err(Error::InvalidOption(format!(
+            "{n} points is more than this build supports"
+        )));
+    }
+    for (i, q) in p.points.iter().enumerate() {
+        if !q[0].is_finite() || !q[1].is_finite() {
+            return Err(InputError::NonFinitePoint { point: i }.into());
+        }
+        if q[0].abs() > MAX_COORD || q[1].abs() > MAX_COORD {
+            return Err(InputError::CoordinateTooLarge { point: i }.into());
+        }
+    }
+    if !p.point_markers.is_empty() && p.point_markers.len() != n {
+        return Err(InputError::MarkerCountMismatch {
+            what: "point",
+            expected: n,
+            got: p.point_markers.len(),
+        }
+        .into());
+    }
+    if !p.segment_markers.is_empty() && p.segment_markers.len() != p.segments.len() {
+        return Err(InputError::MarkerCountMismatch {
+            what: "segment",
+            expected: p.segments.len(),
+            got: p.segment_markers.len(),
+        }
+        .into());
+    }
+    for (s, e) in p.segments.iter().enumerate() {
+        for &i in e {
+            if i as usize >= n {
+                return Err(InputError::SegmentIndexOutOfRange {
+                    segment: s,
+                    index: i as u64,
+                    num_points: n,
+                }
+                .into());
+            }
+        }
+        if e[0] == e[1] || p.points[e[0] as usize] == p.points[e[1] as usize] {
+            return Err(InputError::ZeroLengthSegment { segment: s }.into());
+        }
+    }
+    for (i, h) in p.holes.iter().enumerate() {
+        if !h[0].is_finite() || !h[1].is_finite() {
+            return Err(InputError::NonFiniteHole { hole: i }.into());
+        }
+    }
+    for (i, r) in p.regions.iter().enumerate() {
+        let bad_area = matches!(r.max_area, Some(a) if a.is_nan());
+        if !r.point[0].is_finite()
+            || !r.point[1].is_finite()
+            || !r.attribute.is_finite()
+            || bad_area
+        {
+            return Err(InputError::NonFiniteRegion { region: i }.into());
+        }
+    }
+    // Duplicate segments: sort the normalised index pairs.
+    let mut keys: Vec<(u32, u32, usize)> = p
+        .segments
+        .iter()
+        .enumerate()
+        .map(|(s, e)| (e[0].min(e[1]), e[0].max(e[1]), s))
+        .collect();
+    keys.sort_unstable();
+    for w in keys.windows(2) {
+        if w[0].0 == w[1].0 && w[0].1 == w[1].1 {
+            let (a, b) = (w[0].2.min(w[1].2), w[0].2.max(w[1].2));
+            return Err(InputError::DuplicateSegment {
+                first: a,
+                second: b,
+            }
+            .into());
+        }
+    }
+    Ok(())
+}
+
+/// A spatially coherent insertion order: BRIO rounds (random, geometrically growing) each
+/// sorted along a Hilbert curve, so walks stay short and the expected cost is O(n log n).
+pub(super) fn brio_order(points: &[[f64; 2]]) -> Vec<u32> {
+    let n = points.len();
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in points {
+        for k in 0..2 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let span = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(f64::MIN_POSITIVE);
+    let scale = 65535.0 / span;
+    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+    let mut keys: Vec<(u64, u32)> = Vec::with_capacity(n);
+    for (i, p) in points.iter().enumerate() {
+        // xorshift64*: a fixed seed keeps runs reproducible.
+        state ^= state >> 12;
+        state ^= state << 25;
+        state ^= state >> 27;
+        let r = state.wrapping_mul(0x2545_F491_4F6C_DD1D);
+        // Round = number of trailing ones: round k holds ~n/2^(k+1) points; later rounds are
+        // larger, so the first rounds form a random sample that makes walks short.
+        let round = (r.trailing_ones()).min(20) as u64;
+        let x = ((p[0] - lo[0]) * scale) as u32;
+        let y = ((p[1] - lo[1]) * scale) as u32;
+        let h = hilbert_d(x.min(65535), y.min(65535)) as u64;
+        keys.push((((20 - round) << 32) | h, i as u32));
+    }
+    keys.sort_unstable();
+    keys.into_iter().map(|k| k.1).collect()
+}
+
+/// Position of `(x, y)` along a Hilbert curve of order 16.
+fn hilbert_d(mut x: u32, mut y: u32) -> u32 {
+    let n: u32 = 1 << 16;
+    let mut d: u32 = 0;
+    let mut s = n / 2;
+    while s > 0 {
+        let rx = u32::from((x & s) > 0);
+        let ry = u32::from((y & s) > 0);
+        d = d.wrapping_add(s.wrapping_mul(s).wrapping_mul((3 * rx) ^ ry));
+        if ry == 0 {
+            if rx == 1 {
+                x = s.wrapping_sub(1).wrapping_sub(x) & (n - 1);
+                y = s.wrapping_sub(1).wrapping_sub(y) & (n - 1);
+            }
+            std::mem::swap(&mut x, &mut y);
+        }
+        s /= 2;
+    }
+    d
+}
+
+/// Inserts every input point (Force; no segments are in the mesh yet).
+fn insert_points(cdt: &mut Cdt, points: &[[f64; 2]]) -> Result<(), Error> {
+    let order = brio_order(points);
+    // The first triangle: the first point, the next distinct one, the first non-collinear one.
+    let a = order[0];
+    let pa = points[a as usize];
+    let mut b_pos = None;
+    for (k, &i) in order.iter().enumerate().skip(1) {
+        if points[i as usize] != pa {
+            b_pos = Some(k);
+            break;
+        }
+        return Err(InputError::DuplicatePoint {
+            first: a.min(i) as usize,
+            second: a.max(i) as usize,
+        }
+        .into());
+    }
+    let b_pos = b_pos.ok_or(InputError::AllCollinear)?;
+    let b = order[b_pos];
+    let pb = points[b as usize];
+    let mut c_pos = None;
+    for (k, &i) in order.iter().enumerate().skip(b_pos + 1) {
+        if orient2d(pa, pb, points[i as usize]) != 0.0 {
+            c_pos = Some(k);
+            break;
+        }
+    }
+    let c_pos = c_pos.ok_or(InputError::AllCollinear)?;
+    let c = order[c_pos];
+    if orient2d(pa, pb, points[c as usize]) > 0.0 {
+        cdt.init_triangle(a, b, c);
+    } else {
+        cdt.init_triangle(a, c, b);
+    }
+    for (k, &i) in order.iter().enumerate() {
+        if k == 0 || k == b_pos || k == c_pos {
+            continue;
+        }
+        let p = points[i as usize];
+        match cdt.insert(p, Start::Walk(cdt.hint), Mode::Force, NONE, Some(i)) {
+            Inserted::Yes(_) => {}
+            Inserted::Duplicate(u) => {
+                return Err(InputError::DuplicatePoint {
+                    first: u.min(i) as usize,
+                    second: u.max(i) as usize,
+                }
+                .into())
+            }
+            other => {
+                return Err(Error::Internal(format!(
+                    "inserting input point {i}: {other:?}"
+                )))
+            }
+        }
+    }
+    Ok(())
+}
+
+/// One piece of an input segment after splitting it at input points lying on it.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Piece {
+    pub a: u32,
+    pub b: u32,
+    pub input: u32,
+}
+
+/// Checks segments against each other (crossings, overlaps) and against points (a point inside a
+/// segment splits it there), with a uniform grid so typical inputs cost near-linear time.
+fn segment_pieces(p: &Pslg) -> Result<Vec<Piece>, Error> {
+    let m = p.segments.len();
+    if m == 0 {
+        return Ok(Vec::new());
+    }
+    let pts = &p.points;
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for q in pts {
+        for k in 0..2 {
+            lo[k] = lo[k].min(q[k]);
+            hi[k] = hi[k].max(q[k]);
+        }
+    }
+    let g = ((m as f64).sqrt().ceil() as usize).clamp(1, 1024);
+    let wx = ((hi[0] - lo[0]) / g as f64).max(f64::MIN_POSITIVE);
+    let wy = ((hi[1] - lo[1]) / g as f64).max(f64::MIN_POSITIVE);
+    let cell = |q: [f64; 2]| -> (usize, usize) {
+        let cx = (((q[0] - lo[0]) / wx) as usize).min(g - 1);
+        let cy = (((q[1] - lo[1]) / wy) as usize).min(g - 1);
+        (cx, cy)
+    };
+    // Bucket segments by the cells of their bounding boxes (CSR).
+    let seg_cells = |s: usize| {
+        let [a, b] = p.segments[s];
+        let (ax, ay) = cell(pts[a as usize]);
+        let (bx, by) = cell(pts[b as usize]);
+        (ax.min(bx), ax.max(bx), ay.min(by), ay.max(by))
+    };
+    let mut count = vec![0u32; g * g + 1];
+    for s in 0..m {
+        let (x0, x1, y0, y1) = seg_cells(s);
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                count[y * g + x + 1] += 1;
+            }
+        }
+    }
+    for i in 0..g * g {
+        count[i + 1] += count[i];
+    }
+    let mut fill = count.clone();
+    let mut items = vec![0u32; count[g * g] as usize];
+    for s in 0..m {
+        let (x0, x1, y0, y1) = seg_cells(s);
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                let c = y * g + x;
+                items[fill[c] as usize] = s as u32;
+                fill[c] += 1;
+            }
+        }
+    }
+    // Segment pairs.
+    let mut seen = vec![u32::MAX; m];
+    for s in 0..m {
+        let (x0, x1, y0, y1) = seg_cells(s);
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                let c = y * g + x;
+                for &t in &items[count[c] as usize..count[c + 1] as usize] {
+                    let t = t as usize;
+                    if t <= s || seen[t] == s as u32 {
+                        continue;
+                    }
+                    seen[t] = s as u32;
+                    if segments_conflict(p, s, t) {
+                        return Err(InputError::CrossingSegments {
+                            first: s,
+                            second: t,
+                        }
+                        .into());
+                    }
+                }
+            }
+        }
+    }
+    // Points inside segments.
+    let mut on_seg: Vec<(u32, f64, u32)> = Vec::new();
+    for (i, q) in pts.iter().enumerate() {
+        let (cx, cy) = cell(*q);
+        let c = cy * g + cx;
+        for &s in &items[count[c] as usize..count[c + 1] as usize] {
+            let [a, b] = p.segments[s as usize];
+            if a as usize == i || b as usize == i {
+                continue;
+            }
+            let (pa, pb) = (pts[a as usize], pts[b as usize]);
+            if orient2d(pa, pb, *q) == 0.0 && strictly_between(pa, pb, *q) {
+                let k = if pa[0] != pb[0] { 0 } else { 1 };
+                on_seg.push((s, (q[k] - pa[k]).abs(), i as u32));
+            }
+        }
+    }
+    on_seg.sort_by(|x, y| x.0.cmp(&y.0).then(x.1.total_cmp(&y.1)));
+    let mut pieces = Vec::with_capacity(m + on_seg.len());
+    let mut j = 0;
+    for s in 0..m {
+        let [a, b] = p.segments[s];
+        let mut from = a;
+        while j < on_seg.len() && on_seg[j].0 as usize == s {
+            pieces.push(Piece {
+                a: from,
+                b: on_seg[j].2,
+                input: s as u32,
+            });
+            from = on_seg[j].2;
+            j += 1;
+        }
+        pieces.push(Piece {
+            a: from,
+            b,
+            input: s as u32,
+        });
+    }
+    Ok(pieces)
+}
+
+/// Whether segments `s` and `t` meet other than at a shared endpoint or at an input point
+/// lying on one of them (which splits it and is fine).
+fn segments_conflict(p: &Pslg, s: usize, t: usize) -> bool {
+    let [a, b] = p.segments[s];
+    let [c, d] = p.segments[t];
+    let (pa, pb, pc, pd) = (
+        p.points[a as usize],
+        p.points[b as usize],
+        p.points[c as usize],
+        p.points[d as usize],
+    );
+    let shared = [a, b].iter().filter(|&&x| x == c || x == d).count();
+    if shared == 2 {
+        return true;
+    }
+    let o1 = orient2d(pa, pb, pc);
+    let o2 = orient2d(pa, pb, pd);
+    if o1 == 0.0 && o2 == 0.0 {
+        // Collinear: they conflict when their interiors overlap.
+        let k = if pa[0] != pb[0] { 0 } else { 1 };
+        let (s0, s1) = (pa[k].min(pb[k]), pa[k].max(pb[k]));
+        let (t0, t1) = (pc[k].min(pd[k]), pc[k].max(pd[k]));
+        return s0.max(t0) < s1.min(t1);
+    }
+    if shared == 1 {
+        return false;
+    }
+    let o3 = orient2d(pc, pd, pa);
+    let o4 = orient2d(pc, pd, pb);
+    // A proper crossing. Touchings (an endpoint inside the other segment) are handled as points
+    // on segments.
+    (o1 > 0.0 && o2 < 0.0 || o1 < 0.0 && o2 > 0.0) && (o3 > 0.0 && o4 < 0.0 || o3 < 0.0 && o4 > 0.0)
+}
+
+/// Marks exterior, holes and regions by flooding from infinity and from seeds, stopping at
+/// segments. In convex-hull mode (or without segments) the hull edges become segments instead.
+fn classify(r: &mut Refiner, pslg: &Pslg, opts: &Options) -> Result<(), Error> {
+    let hull_mode = opts.convex_hull || pslg.segments.is_empty();
+    let cdt = &mut r.cdt;
+    let nslots = cdt.num_slots();
+    let mut stack: Vec<u32> = Vec::new();
+    for t in 0..nslots as u32 {
+        if !cdt.alive(t) {
+            continue;
+        }
+        if cdt.is_ghost(t) {
+            cdt.treg[t as usize] = EXTERIOR;
+            if hull_mode {
+                // The hull edge is the ghost's finite edge; make it a boundary segment.
+                let v = cdt.tv[t as usize];
+                let k = (0..3).find(|&k| v[k] == cdt.ghost).unwrap_or(0) as u32;
+                let h = 3 * t + k;
+                if cdt.seg_at(h) == NONE {
+                    let (a, b) = cdt.edge_ends(h);
+                    let s = cdt.segs.len() as u32;
+                    cdt.segs.push(Seg {
+                        a,
+                        b,
+                        input: NONE,
+                        marker: 1,
+                    });
+                    cdt.seg_queued.push(false);
+                    cdt.set_seg(h, s);
+                }
+            } else {
+                stack.push(t);
+            }
+        } else {
+            cdt.treg[t as usize] = NO_REGION;
+        }
+    }
+    if hull_mode && r.will_refine() {
+        // Hull edges are Delaunay edges whatever encroaches them; but refinement needs them
+        // unencroached (Ruppert) so that no Steiner point lands outside the hull.
+        let nseg = r.cdt.segs.len();
+        for s in 0..nseg as u32 {
+            if r.cdt.segs[s as usize].input == NONE {
+                r.check_encroached(s);
+            }
+        }
+        r.drain_splits()?;
+    }
+    let cdt = &mut r.cdt;
+    flood(cdt, &mut stack, EXTERIOR);
+    for (i, h) in pslg.holes.iter().enumerate() {
+        let t = seed_triangle(cdt, *h).ok_or(InputError::HoleOutsideDomain { hole: i })?;
+        match cdt.treg[t as usize] {
+            EXTERIOR => return Err(InputError::HoleOutsideDomain { hole: i }.into()),
+            HOLE => continue,
+            _ => {}
+        }
+        cdt.treg[t as usize] = HOLE;
+        stack.push(t);
+        flood(cdt, &mut stack, HOLE);
+    }
+    for (i, reg) in pslg.regions.iter().enumerate() {
+        let t =
+            seed_triangle(cdt, reg.point).ok_or(InputError::RegionOutsideDomain { region: i })?;
+        if matches!(cdt.treg[t as usize], EXTERIOR | HOLE) {
+            return Err(InputError::RegionOutsideDomain { region: i }.into());
+        }
+        cdt.treg[t as usize] = i as u32;
+        stack.push(t);
+        flood(cdt, &mut stack, i as u32);
+    }
+    Ok(())
+}
+
+/// The triangle containing seed `p`, or `None` when `p` lies on a segment.
+fn seed_triangle(cdt: &Cdt, p: [f64; 2]) -> Option<u32> {
+    let t = cdt.locate(cdt.hint, p, false).ok()?;
+    if cdt.is_ghost(t) {
+        return Some(t);
+    }
+    let v = cdt.tv[t as usize];
+    for i in 0..3 {
+        let a = cdt.pts[v[(i + 1) % 3] as usize];
+        let b = cdt.pts[v[(i + 2) % 3] as usize];
+        if orient2d(a, b, p) == 0.0 && cdt.ts[t as usize][i] != NONE {
+            return None;
+        }
+    }
+    Some(t)
+}
+
+fn flood(cdt: &mut Cdt, stack: &mut Vec<u32>, label: u32) {
+    while let Some(t) = stack.pop() {
+        for i in 0..3 {
+            if cdt.ts[t as usize][i] != NONE {
+                continue;
+            }
+            let n = cdt.tn[t as usize][i] / 3;
+            let cur = cdt.treg[n as usize];
+            if cur == label || (label != EXTERIOR && cur == EXTERIOR) {
+                continue;
+            }
+            if label == EXTERIOR || label == HOLE || cur != HOLE {
+                cdt.treg[n as usize] = label;
+                stack.push(n);
+            }
+        }
+    }
+}
+
+/// Builds the output: domain triangles, input vertices at their input index, used Steiner
+/// vertices after them, subsegments on domain edges.
+fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> TriMesh {
+    let cdt = &r.cdt;
+    let in_domain = |t: u32| {
+        let reg = cdt.treg[t as usize];
+        cdt.alive(t) && reg != EXTERIOR && reg != HOLE && !cdt.is_ghost(t)
+    };
+    let nv = cdt.pts.len();
+    let mut vmap = vec![NONE; nv];
+    for (i, m) in vmap.iter_mut().enumerate().take(n) {
+        *m = i as u32;
+    }
+    let mut tmap = vec![NONE; cdt.num_slots()];
+    let mut ntri = 0u32;
+    let mut next_v = n as u32;
+    let mut vertices: Vec<[f64; 2]> = pslg.points.clone();
+    let mut vertex_markers: Vec<i32> = if pslg.point_markers.is_empty() {
+        vec![0; n]
+    } else {
+        pslg.point_markers.clone()
+    };
+    for t in 0..cdt.num_slots() as u32 {
+        if !in_domain(t) {
+            continue;
+        }
+        tmap[t as usize] = ntri;
+        ntri += 1;
+        for &v in &cdt.tv[t as usize] {
+            if vmap[v as usize] == NONE {
+                vmap[v as usize] = next_v;
+                next_v += 1;
+                vertices.push(cdt.pts[v as usize]);
+                let s = cdt.vseg[v as usize];
+                let marker = if s != NONE {
+                    segment_marker(pslg, s as usize)
+                } else {
+                    0
+                };
+                vertex_markers.push(marker);
+            }
+        }
+    }
+    let mut triangles = Vec::with_capacity(ntri as usize);
+    let mut neighbors = Vec::with_capacity(ntri as usize);
+    let mut attrs = Vec::new();
+    for t in 0..cdt.num_slots() as u32 {
+        if tmap[t as usize] == NONE {
+            continue;
+        }
+        let v = cdt.tv[t as usize];
+        triangles.push(v.map(|x| vmap[x as usize]));
+        let nb = cdt.tn[t as usize].map(|h| tmap[(h / 3) as usize]);
+        neighbors.push(nb);
+        if opts.region_attributes {
+            let reg = cdt.treg[t as usize];
+            attrs.push(if reg == NO_REGION {
+                0.0
+            } else {
+                pslg.regions[reg as usize].attribute
+            });
+        }
+    }
+    let mut segments = Vec::new();
+    let mut segment_markers = Vec::new();
+    for s in &cdt.segs {
+        let (a, b) = (vmap[s.a as usize], vmap[s.b as usize]);
+        if a == NONE || b == NONE {
+            continue;
+        }
+        if let Some(h) = cdt.find_edge(s.a, s.b) {
+            let tw = cdt.twin(h);
+            if in_domain(h / 3) || in_domain(tw / 3) {
+                segments.push([a, b]);
+                segment_markers.push(s.marker);
+            }
+        }
+    }
+    TriMesh {
+        steiner_points: next_v as usize - n,
+        vertices,
+        vertex_markers,
+        num_input_vertices: n,
+        triangles,
+        neighbors,
+        triangle_attributes: attrs,
+        segments,
+        segment_markers,
+        complete: r.complete,
+    }
+}
+
+/// The marker of input segment `s` (1 when the input gives none, as for Triangle's boundary).
+pub(super) fn segment_marker(pslg: &Pslg, s: usize) -> i32 {
+    if pslg.segment_markers.is_empty() {
+        1
+    } else {
+        pslg.segment_markers[s]
+    }
 }

@@ -12,6 +12,9 @@ mod refine;
 mod store;
 mod validate;
 
+#[cfg(test)]
+mod tests;
+
 use std::fmt;
 use std::sync::Arc;
 

@@ -1,1 +1,580 @@
-//! (in progress)
+//! The triangulation store and the incremental Bowyer–Watson kernel (paper §2, Fig. 2).
+//!
+//! Triangles live in flat arrays indexed by `TriId`; half-edge `3t + i` is the edge of triangle
+//! `t` opposite its vertex `i`, directed counter-clockwise (`v[i+1] → v[i+2]`). The triangulation
+//! covers the whole plane: the convex hull is closed by *ghost* triangles sharing one symbolic
+//! vertex at infinity (`ghost`), which plays the paper's bounding triangle with the bounding
+//! vertices infinitely far away, so no bounding-box vertex can spoil the hull.
+//!
+//! Segments that are present in the mesh are *walls*: a cavity never crosses one. A point that
+//! would delete a segment or lies inside its diametral circle reports it instead (paper Fig. 2
+//! steps 5–6): a `Provisional` insertion aborts and hands the segment back; a `Force` insertion
+//! queues the segment for splitting and continues.
+
+use crate::predicates::{encroaches, incircle, orient2d, strictly_between};
+
+use super::NONE;
+
+/// A vertex index.
+pub type VertexId = u32;
+/// A triangle index.
+pub type TriId = u32;
+/// A segment (subsegment) index.
+pub type SegId = u32;
+
+/// Region label of triangles outside the domain (reached from infinity).
+pub const EXTERIOR: u32 = NONE;
+/// Region label of triangles inside a hole.
+pub const HOLE: u32 = NONE - 1;
+/// Region label of domain triangles that belong to no region seed.
+pub const NO_REGION: u32 = NONE - 2;
+
+/// How an insertion treats encroached segments (paper Fig. 2).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Mode {
+    /// Insert anyway; encroached segments are queued for splitting.
+    Force,
+    /// Abort without changing the mesh and return the first encroached segment.
+    Provisional,
+}
+
+/// Where an insertion starts.
+#[derive(Clone, Copy, Debug)]
+pub enum Start {
+    /// Walk from this triangle to the point.
+    Walk(TriId),
+    /// The point splits the segment on this half-edge: seed the cavity with both of its
+    /// triangles and let the cavity cross it.
+    SplitEdge(u32),
+}
+
+/// The outcome of an insertion attempt.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Inserted {
+    /// The point was inserted as this vertex; the new triangles are in `Cdt::new_tris`.
+    Yes(VertexId),
+    /// `Provisional` only: the point encroaches this segment; nothing changed.
+    Encroached(SegId),
+    /// The point coincides with this existing vertex; nothing changed.
+    Duplicate(VertexId),
+    /// The point lies exactly on this segment (not the one being split); nothing changed.
+    OnSegment(SegId),
+    /// Point location ran out of its step budget (a bug); nothing changed.
+    LostWalk,
+}
+
+/// A subsegment: a piece of an input segment (or of the convex hull in convex-hull mode).
+#[derive(Clone, Copy, Debug)]
+pub struct Seg {
+    /// First endpoint.
+    pub a: VertexId,
+    /// Second endpoint.
+    pub b: VertexId,
+    /// The input segment this piece belongs to (`NONE` for hull segments).
+    pub input: u32,
+    /// The output marker.
+    pub marker: i32,
+}
+
+/// The triangulation, its segments and reusable scratch space.
+pub struct Cdt {
+    /// Vertex coordinates; the ghost vertex holds infinities.
+    pub pts: Vec<[f64; 2]>,
+    /// One triangle incident to each vertex (`NONE` before insertion).
+    pub vtri: Vec<TriId>,
+    /// For vertices on a segment: the input segment they lie on; else `NONE`.
+    pub vseg: Vec<u32>,
+    /// The symbolic vertex at infinity.
+    pub ghost: VertexId,
+    /// Triangle corners (counter-clockwise); `[NONE; 3]` for a free slot.
+    pub tv: Vec<[VertexId; 3]>,
+    /// `tn[t][i]`: the twin half-edge (`3t' + j`) across edge `i` of `t`.
+    pub tn: Vec<[u32; 3]>,
+    /// `ts[t][i]`: the segment on edge `i` of `t`, or `NONE`.
+    pub ts: Vec<[SegId; 3]>,
+    /// Region label per triangle (see [`EXTERIOR`], [`HOLE`], [`NO_REGION`]).
+    pub treg: Vec<u32>,
+    free: Vec<TriId>,
+    /// Subsegments.
+    pub segs: Vec<Seg>,
+    /// Segments waiting to be split (paper's queue `P` of Force'd points).
+    pub split_queue: Vec<SegId>,
+    /// Whether a segment is in `split_queue`.
+    pub seg_queued: Vec<bool>,
+    /// Triangles created by the last successful insertion.
+    pub new_tris: Vec<TriId>,
+    stamp: Vec<u32>,
+    epoch: u32,
+    cavity: Vec<TriId>,
+    boundary: Vec<u32>,
+    breg: Vec<u32>,
+    vmark: Vec<TriId>,
+    /// The last triangle created (a walking hint).
+    pub hint: TriId,
+}
+
+#[inline]
+fn next(i: usize) -> usize {
+    if i == 2 {
+        0
+    } else {
+        i + 1
+    }
+}
+
+#[inline]
+fn prev(i: usize) -> usize {
+    if i == 0 {
+        2
+    } else {
+        i - 1
+    }
+}
+
+impl Cdt {
+    /// An empty store for `n` input points (the ghost vertex gets index `n`).
+    pub fn new(points: &[[f64; 2]]) -> Cdt {
+        let n = points.len();
+        let mut pts = Vec::with_capacity(n + 1 + n / 2);
+        pts.extend_from_slice(points);
+        pts.push([f64::INFINITY, f64::INFINITY]);
+        let cap = 2 * n + 8;
+        Cdt {
+            pts,
+            vtri: vec![NONE; n + 1],
+            vseg: vec![NONE; n + 1],
+            ghost: n as u32,
+            tv: Vec::with_capacity(cap),
+            tn: Vec::with_capacity(cap),
+            ts: Vec::with_capacity(cap),
+            treg: Vec::with_capacity(cap),
+            free: Vec::new(),
+            segs: Vec::new(),
+            split_queue: Vec::new(),
+            seg_queued: Vec::new(),
+            new_tris: Vec::new(),
+            stamp: Vec::with_capacity(cap),
+            epoch: 0,
+            cavity: Vec::new(),
+            boundary: Vec::new(),
+            breg: Vec::new(),
+            vmark: vec![NONE; n + 1],
+            hint: 0,
+        }
+    }
+
+    /// Number of triangle slots (live or free).
+    #[inline]
+    pub fn num_slots(&self) -> usize {
+        self.tv.len()
+    }
+
+    /// Whether slot `t` holds a live triangle.
+    #[inline]
+    pub fn alive(&self, t: TriId) -> bool {
+        self.tv[t as usize][0] != NONE
+    }
+
+    /// Whether triangle `t` has the ghost vertex.
+    #[inline]
+    pub fn is_ghost(&self, t: TriId) -> bool {
+        let v = self.tv[t as usize];
+        v[0] == self.ghost || v[1] == self.ghost || v[2] == self.ghost
+    }
+
+    #[inline]
+    fn p(&self, v: VertexId) -> [f64; 2] {
+        self.pts[v as usize]
+    }
+
+    fn alloc(&mut self) -> TriId {
+        if let Some(t) = self.free.pop() {
+            return t;
+        }
+        let t = self.tv.len() as TriId;
+        self.tv.push([NONE; 3]);
+        self.tn.push([NONE; 3]);
+        self.ts.push([NONE; 3]);
+        self.treg.push(NO_REGION);
+        self.stamp.push(0);
+        t
+    }
+
+    /// Adds a new vertex (not yet inserted) and returns its id.
+    pub fn push_vertex(&mut self, p: [f64; 2], on_input_seg: u32) -> VertexId {
+        let id = self.pts.len() as VertexId;
+        self.pts.push(p);
+        self.vtri.push(NONE);
+        self.vseg.push(on_input_seg);
+        self.vmark.push(NONE);
+        id
+    }
+
+    /// Builds the first triangle `a, b, c` (counter-clockwise, inserted) and its three ghosts.
+    pub fn init_triangle(&mut self, a: VertexId, b: VertexId, c: VertexId) {
+        let g = self.ghost;
+        let t = self.alloc();
+        let g0 = self.alloc(); // across edge 0 (b, c): ghost (c, b, g)
+        let g1 = self.alloc(); // across edge 1 (c, a): ghost (a, c, g)
+        let g2 = self.alloc(); // across edge 2 (a, b): ghost (b, a, g)
+        self.tv[t as usize] = [a, b, c];
+        self.tv[g0 as usize] = [c, b, g];
+        self.tv[g1 as usize] = [a, c, g];
+        self.tv[g2 as usize] = [b, a, g];
+        self.tn[t as usize] = [3 * g0 + 2, 3 * g1 + 2, 3 * g2 + 2];
+        self.tn[g0 as usize][2] = 3 * t;
+        self.tn[g1 as usize][2] = 3 * t + 1;
+        self.tn[g2 as usize][2] = 3 * t + 2;
+        // Ghost-to-ghost edges: (c, b, g) edge 0 is (b, g); its twin is (g, b) in (b, a, g) edge 1.
+        self.link(3 * g0, 3 * g2 + 1);
+        // (c, b, g) edge 1 is (g, c); twin (c, g) in (a, c, g) edge 0.
+        self.link(3 * g0 + 1, 3 * g1);
+        // (a, c, g) edge 1 is (g, a); twin (a, g) in (b, a, g) edge 0.
+        self.link(3 * g1 + 1, 3 * g2);
+        for v in [a, b, c] {
+            self.vtri[v as usize] = t;
+        }
+        self.vtri[g as usize] = g0;
+        self.hint = t;
+    }
+
+    #[inline]
+    fn link(&mut self, h1: u32, h2: u32) {
+        self.tn[(h1 / 3) as usize][(h1 % 3) as usize] = h2;
+        self.tn[(h2 / 3) as usize][(h2 % 3) as usize] = h1;
+    }
+
+    /// The twin of half-edge `h`.
+    #[inline]
+    pub fn twin(&self, h: u32) -> u32 {
+        self.tn[(h / 3) as usize][(h % 3) as usize]
+    }
+
+    /// The endpoints `(from, to)` of half-edge `h`.
+    #[inline]
+    pub fn edge_ends(&self, h: u32) -> (VertexId, VertexId) {
+        let t = (h / 3) as usize;
+        let i = (h % 3) as usize;
+        (self.tv[t][next(i)], self.tv[t][prev(i)])
+    }
+
+    /// The vertex opposite half-edge `h` in its triangle.
+    #[inline]
+    pub fn apex(&self, h: u32) -> VertexId {
+        self.tv[(h / 3) as usize][(h % 3) as usize]
+    }
+
+    /// The segment on half-edge `h`, or `NONE`.
+    #[inline]
+    pub fn seg_at(&self, h: u32) -> SegId {
+        self.ts[(h / 3) as usize][(h % 3) as usize]
+    }
+
+    /// Marks (or clears, with `NONE`) the segment on half-edge `h` and its twin.
+    pub fn set_seg(&mut self, h: u32, s: SegId) {
+        let tw = self.twin(h);
+        self.ts[(h / 3) as usize][(h % 3) as usize] = s;
+        self.ts[(tw / 3) as usize][(tw % 3) as usize] = s;
+    }
+
+    /// Finds the half-edge from `a` to `b` by turning around `a`; `None` if `ab` is no edge.
+    pub fn find_edge(&self, a: VertexId, b: VertexId) -> Option<u32> {
+        let start = self.vtri[a as usize];
+        if start == NONE {
+            return None;
+        }
+        let mut t = start;
+        // Each turn crosses the edge (a, v[k+1]) of the current triangle; the budget guards
+        // against a corrupted fan.
+        for _ in 0..1_000_000 {
+            let v = self.tv[t as usize];
+            let k = if v[0] == a {
+                0
+            } else if v[1] == a {
+                1
+            } else {
+                2
+            };
+            if v[next(k)] == b {
+                // Edge a→b is opposite v[k+2].
+                return Some(3 * t + prev(k) as u32);
+            }
+            // Cross edge (v[k+2], a) (opposite v[k+1]) to turn clockwise around a.
+            let h = self.tn[t as usize][next(k)];
+            t = h / 3;
+            if t == start {
+                return None;
+            }
+        }
+        None
+    }
+
+    /// Whether `p` conflicts with triangle `t`: strictly inside its circumcircle, or, for a
+    /// ghost triangle, strictly outside its hull edge or on the open hull edge.
+    #[inline]
+    pub fn conflict(&self, t: TriId, p: [f64; 2]) -> bool {
+        let v = self.tv[t as usize];
+        let g = self.ghost;
+        if v[0] == g || v[1] == g || v[2] == g {
+            let k = if v[0] == g {
+                0
+            } else if v[1] == g {
+                1
+            } else {
+                2
+            };
+            let a = self.p(v[next(k)]);
+            let b = self.p(v[prev(k)]);
+            let o = orient2d(a, b, p);
+            o > 0.0 || (o == 0.0 && strictly_between(a, b, p))
+        } else {
+            incircle(self.p(v[0]), self.p(v[1]), self.p(v[2]), p) > 0.0
+        }
+    }
+
+    /// Visibility walk from `start` to the triangle containing `p`. Returns the triangle (or a
+    /// ghost when `p` is outside the hull). With `stop_at_walls`, crossing a segment is refused
+    /// and the segment is returned as `Err(seg)`.
+    pub fn locate(
+        &self,
+        start: TriId,
+        p: [f64; 2],
+        stop_at_walls: bool,
+    ) -> Result<TriId, Option<SegId>> {
+        let mut t = start;
+        if self.is_ghost(t) {
+            // Start from the finite triangle across the ghost's hull edge.
+            let v = self.tv[t as usize];
+            let k = (0..3).find(|&k| v[k] == self.ghost).unwrap_or(0);
+            t = self.tn[t as usize][k] / 3;
+        }
+        let budget = 4 * self.tv.len() + 64;
+        let mut rot = 0usize;
+        for _ in 0..budget {
+            let v = self.tv[t as usize];
+            if self.is_ghost(t) {
+                return Ok(t);
+            }
+            let mut moved = false;
+            rot = if rot == 2 { 0 } else { rot + 1 };
+            for d in 0..3 {
+                let i = (rot + d) % 3;
+                let a = self.p(v[next(i)]);
+                let b = self.p(v[prev(i)]);
+                if orient2d(a, b, p) < 0.0 {
+                    if stop_at_walls {
+                        let s = self.ts[t as usize][i];
+                        if s != NONE {
+                            return Err(Some(s));
+                        }
+                    }
+                    t = self.tn[t as usize][i] / 3;
+                    moved = true;
+                    break;
+                }
+            }
+            if !moved {
+                return Ok(t);
+            }
+        }
+        Err(None)
+    }
+
+    /// Queues segment `s` for splitting (once).
+    pub fn queue_split(&mut self, s: SegId) {
+        if !self.seg_queued[s as usize] {
+            self.seg_queued[s as usize] = true;
+            self.split_queue.push(s);
+        }
+    }
+
+    /// Inserts point `p` (paper Fig. 2, steps 4–6). On success the new vertex's triangles are in
+    /// `new_tris`. `split` is the segment being split by `p` (with `Start::SplitEdge`), if any.
+    ///
+    /// `existing` names an input vertex that already has its slot (input points keep their
+    /// index); otherwise a new vertex lying on input segment `on_input_seg` (or `NONE`) is added.
+    pub fn insert(
+        &mut self,
+        p: [f64; 2],
+        start: Start,
+        mode: Mode,
+        on_input_seg: u32,
+        existing: Option<VertexId>,
+    ) -> Inserted {
+        self.epoch = self.epoch.wrapping_add(2);
+        if self.epoch < 2 {
+            // Wrapped around: clear the stamps so old values cannot alias the new epoch.
+            self.stamp.iter_mut().for_each(|s| *s = 0);
+            self.epoch = 2;
+        }
+        let inside = self.epoch;
+        let outside = self.epoch + 1;
+        self.cavity.clear();
+        self.boundary.clear();
+        let mut split_half = NONE;
+        match start {
+            Start::Walk(t0) => {
+                let t = match self.locate(t0, p, mode == Mode::Provisional) {
+                    Ok(t) => t,
+                    Err(Some(s)) => return Inserted::Encroached(s),
+                    Err(None) => return Inserted::LostWalk,
+                };
+                let v = self.tv[t as usize];
+                for &u in &v {
+                    if u != self.ghost && self.pts[u as usize] == p {
+                        return Inserted::Duplicate(u);
+                    }
+                }
+                if !self.conflict(t, p) {
+                    // Only possible for a point on the line of a hull edge but outside it, seen
+                    // from a ghost whose neighbour holds the conflict; take the neighbour ghosts.
+                    let mut found = NONE;
+                    for i in 0..3 {
+                        let n = self.tn[t as usize][i] / 3;
+                        if self.conflict(n, p) {
+                            found = n;
+                            break;
+                        }
+                    }
+                    if found == NONE {
+                        return Inserted::LostWalk;
+                    }
+                    self.stamp[found as usize] = inside;
+                    self.cavity.push(found);
+                } else {
+                    self.stamp[t as usize] = inside;
+                    self.cavity.push(t);
+                }
+            }
+            Start::SplitEdge(h) => {
+                let tw = self.twin(h);
+                split_half = h;
+                for t in [h / 3, tw / 3] {
+                    self.stamp[t as usize] = inside;
+                    self.cavity.push(t);
+                }
+            }
+        }
+        let split_twin = if split_half != NONE {
+            self.twin(split_half)
+        } else {
+            NONE
+        };
+        // Grow the cavity by depth-first search over the dual graph, stopping at walls.
+        let mut k = 0;
+        while k < self.cavity.len() {
+            let t = self.cavity[k];
+            k += 1;
+            for i in 0..3 {
+                let h = 3 * t + i as u32;
+                let tw = self.tn[t as usize][i];
+                let n = tw / 3;
+                let st = self.stamp[n as usize];
+                if st == inside {
+                    continue;
+                }
+                let s = self.ts[t as usize][i];
+                if s != NONE && h != split_half && h != split_twin {
+                    let (a, b) = self.edge_ends(h);
+                    if encroaches(self.p(a), self.p(b), p) {
+                        match mode {
+                            Mode::Provisional => return Inserted::Encroached(s),
+                            Mode::Force => self.queue_split(s),
+                        }
+                    }
+                    self.boundary.push(h);
+                    continue;
+                }
+                if st != outside && self.conflict(n, p) {
+                    self.stamp[n as usize] = inside;
+                    self.cavity.push(n);
+                } else {
+                    self.stamp[n as usize] = outside;
+                    self.boundary.push(h);
+                }
+            }
+        }
+        // Every new finite triangle must be counter-clockwise; a point exactly on a wall (not
+        // the segment being split) would make a flat one.
+        for &h in &self.boundary {
+            let (q, r) = self.edge_ends(h);
+            if q != self.ghost && r != self.ghost && orient2d(p, self.p(q), self.p(r)) <= 0.0 {
+                let s = self.seg_at(h);
+                if s != NONE {
+                    return Inserted::OnSegment(s);
+                }
+                return Inserted::LostWalk;
+            }
+        }
+        if self.pts.len() >= (NONE - 8) as usize {
+            return Inserted::LostWalk;
+        }
+        let pv = match existing {
+            Some(v) => v,
+            None => self.push_vertex(p, on_input_seg),
+        };
+        self.fill(pv)
+    }
+
+    /// Replaces the cavity by the fan of triangles from `pv` to its boundary (paper step 6).
+    /// New triangles are `[pv, q, r]` for each boundary edge `q → r`, so edge 0 is the old
+    /// boundary edge, edge 1 is `(r, pv)` and edge 2 is `(pv, q)`.
+    fn fill(&mut self, pv: VertexId) -> Inserted {
+        self.new_tris.clear();
+        self.breg.clear();
+        let ncav = self.cavity.len();
+        let nb = self.boundary.len();
+        // Save what lives in cavity slots before they are reused: the outer twin of each
+        // boundary edge (which also gives its ends and segment) and the region label.
+        for j in 0..nb {
+            let h = self.boundary[j];
+            let t_in = (h / 3) as usize;
+            self.breg.push(self.treg[t_in]);
+            self.boundary[j] = self.tn[t_in][(h % 3) as usize];
+        }
+        for j in 0..nb {
+            let outer = self.boundary[j];
+            // The outer half-edge runs r → q.
+            let (r, q) = self.edge_ends(outer);
+            let s = self.seg_at(outer);
+            let t = if j < ncav {
+                self.cavity[j]
+            } else {
+                self.alloc()
+            };
+            self.new_tris.push(t);
+            let tu = t as usize;
+            self.tv[tu] = [pv, q, r];
+            self.ts[tu] = [s, NONE, NONE];
+            self.treg[tu] = self.breg[j];
+            self.tn[tu][0] = outer;
+            self.tn[(outer / 3) as usize][(outer % 3) as usize] = 3 * t;
+        }
+        for j in nb..ncav {
+            let t = self.cavity[j];
+            self.tv[t as usize] = [NONE; 3];
+            self.free.push(t);
+        }
+        // Link the fan: the triangle starting at q (edge 2 = (pv, q)) meets the triangle ending
+        // at q (edge 1 = (q, pv)).
+        for &t in &self.new_tris {
+            let q = self.tv[t as usize][1];
+            self.vmark[q as usize] = t;
+        }
+        for j in 0..nb {
+            let t = self.new_tris[j];
+            let [_, q, r] = self.tv[t as usize];
+            let t2 = self.vmark[r as usize];
+            self.tn[t as usize][1] = 3 * t2 + 2;
+            self.tn[t2 as usize][2] = 3 * t + 1;
+            self.vtri[q as usize] = t;
+        }
+        for j in 0..nb {
+            let q = self.tv[self.new_tris[j] as usize][1];
+            self.vmark[q as usize] = NONE;
+        }
+        self.vtri[pv as usize] = self.new_tris[0];
+        self.hint = self.new_tris[0];
+        Inserted::Yes(pv)
+    }
+}

@@ -1,6 +1,145 @@
-//! Invariant checks of an output mesh.
-use super::TriMesh;
+//! Exact checks of an output mesh's invariants: indices, orientation, adjacency, empty
+//! circumcircles against every vertex, and subsegments present as edges.
 
-pub(super) fn validate(_m: &TriMesh) -> Result<(), String> {
-    Err("validate: not yet written".into())
+use std::collections::HashSet;
+
+use super::{TriMesh, NONE};
+use crate::geometry::circumcenter;
+use crate::predicates::{incircle, orient2d};
+
+pub(super) fn validate(m: &TriMesh) -> Result<(), String> {
+    let nv = m.vertices.len();
+    let nt = m.triangles.len();
+    if m.neighbors.len() != nt {
+        return Err(format!(
+            "{} neighbour rows for {nt} triangles",
+            m.neighbors.len()
+        ));
+    }
+    if m.vertex_markers.len() != nv {
+        return Err(format!(
+            "{} vertex markers for {nv} vertices",
+            m.vertex_markers.len()
+        ));
+    }
+    if !m.triangle_attributes.is_empty() && m.triangle_attributes.len() != nt {
+        return Err(format!(
+            "{} attributes for {nt} triangles",
+            m.triangle_attributes.len()
+        ));
+    }
+    for (t, tri) in m.triangles.iter().enumerate() {
+        if tri.iter().any(|&v| v as usize >= nv) {
+            return Err(format!("triangle {t} has a vertex index out of range"));
+        }
+        let [a, b, c] = tri.map(|v| m.vertices[v as usize]);
+        if orient2d(a, b, c) <= 0.0 {
+            return Err(format!("triangle {t} is not strictly counter-clockwise"));
+        }
+        for i in 0..3 {
+            let n = m.neighbors[t][i];
+            if n == NONE {
+                continue;
+            }
+            if n as usize >= nt {
+                return Err(format!("triangle {t} has neighbour {n} out of range"));
+            }
+            let (p, q) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+            let other = m.triangles[n as usize];
+            let back = (0..3).find(|&j| m.neighbors[n as usize][j] == t as u32);
+            let Some(j) = back else {
+                return Err(format!("triangles {t} and {n} are not mutual neighbours"));
+            };
+            if other[(j + 1) % 3] != q || other[(j + 2) % 3] != p {
+                return Err(format!(
+                    "triangles {t} and {n} do not share the edge ({p}, {q})"
+                ));
+            }
+        }
+    }
+    let mut edges = HashSet::with_capacity(nt * 2);
+    for tri in &m.triangles {
+        for i in 0..3 {
+            let (p, q) = (tri[i], tri[(i + 1) % 3]);
+            edges.insert((p.min(q), p.max(q)));
+        }
+    }
+    for (s, e) in m.segments.iter().enumerate() {
+        if !edges.contains(&(e[0].min(e[1]), e[0].max(e[1]))) {
+            return Err(format!(
+                "subsegment {s} ({}, {}) is not a mesh edge",
+                e[0], e[1]
+            ));
+        }
+    }
+    check_empty_circles(m)
+}
+
+/// Every triangle's open circumdisk must hold no vertex. Candidates come from a uniform grid
+/// over the vertices; the float circumcircle only selects cells (generously padded), the
+/// decision is the exact in-circle test.
+fn check_empty_circles(m: &TriMesh) -> Result<(), String> {
+    let nv = m.vertices.len();
+    if nv == 0 || m.triangles.is_empty() {
+        return Ok(());
+    }
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in &m.vertices {
+        for k in 0..2 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let g = ((nv as f64).sqrt().ceil() as usize).clamp(1, 2048);
+    let w = [
+        ((hi[0] - lo[0]) / g as f64).max(f64::MIN_POSITIVE),
+        ((hi[1] - lo[1]) / g as f64).max(f64::MIN_POSITIVE),
+    ];
+    let cell = |x: f64, k: usize| -> usize {
+        let c = ((x - lo[k]) / w[k]).floor();
+        if c.is_nan() || c < 0.0 {
+            0
+        } else {
+            (c as usize).min(g - 1)
+        }
+    };
+    let mut start = vec![0u32; g * g + 1];
+    for p in &m.vertices {
+        start[cell(p[1], 1) * g + cell(p[0], 0) + 1] += 1;
+    }
+    for i in 0..g * g {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut items = vec![0u32; nv];
+    for (i, p) in m.vertices.iter().enumerate() {
+        let c = cell(p[1], 1) * g + cell(p[0], 0);
+        items[fill[c] as usize] = i as u32;
+        fill[c] += 1;
+    }
+    for (t, tri) in m.triangles.iter().enumerate() {
+        let [a, b, c] = tri.map(|v| m.vertices[v as usize]);
+        let Some(o) = circumcenter(a, b, c) else {
+            return Err(format!("triangle {t} has no finite circumcenter"));
+        };
+        let r = ((o[0] - a[0]).hypot(o[1] - a[1])) * (1.0 + 1e-9) + 1e-300;
+        let (x0, x1) = (cell(o[0] - r, 0), cell(o[0] + r, 0));
+        let (y0, y1) = (cell(o[1] - r, 1), cell(o[1] + r, 1));
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                let cidx = y * g + x;
+                for &v in &items[start[cidx] as usize..start[cidx + 1] as usize] {
+                    if tri.contains(&v) {
+                        continue;
+                    }
+                    if incircle(a, b, c, m.vertices[v as usize]) > 0.0 {
+                        return Err(format!(
+                            "vertex {v} lies inside the circumcircle of triangle {t}"
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
 }

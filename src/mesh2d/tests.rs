@@ -1,0 +1,180 @@
+//! Unit tests of the 2D core on small inputs; the property tests live in tests/.
+
+use super::*;
+use crate::input::{Pslg, Region};
+
+fn square_with_hole() -> Pslg {
+    let mut p = Pslg::default();
+    p.points = vec![
+        [0.0, 0.0],
+        [1.0, 0.0],
+        [1.0, 1.0],
+        [0.0, 1.0],
+        [0.4, 0.4],
+        [0.6, 0.4],
+        [0.6, 0.6],
+        [0.4, 0.6],
+    ];
+    p.segments = vec![
+        [0, 1],
+        [1, 2],
+        [2, 3],
+        [3, 0],
+        [4, 5],
+        [5, 6],
+        [6, 7],
+        [7, 4],
+    ];
+    p.holes = vec![[0.5, 0.5]];
+    p
+}
+
+fn assert_ok(m: &TriMesh, area: f64) {
+    m.validate().unwrap();
+    assert!(
+        (m.area() - area).abs() <= 1e-12 * area.max(1.0),
+        "area {} vs {}",
+        m.area(),
+        area
+    );
+}
+
+#[test]
+fn delaunay_of_points_covers_the_hull() {
+    let mut p = Pslg::default();
+    let mut s: u64 = 7;
+    for _ in 0..2000 {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        let x = (s >> 11) as f64 / (1u64 << 53) as f64;
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        let y = (s >> 11) as f64 / (1u64 << 53) as f64;
+        p.points.push([x, y]);
+    }
+    p.points
+        .extend_from_slice(&[[-1.0, -1.0], [2.0, -1.0], [2.0, 2.0], [-1.0, 2.0]]);
+    let m = triangulate(&p, &Options::default()).unwrap();
+    assert_ok(&m, 9.0);
+    assert_eq!(m.vertices.len(), p.points.len());
+    // Euler: 2n - 2 - h triangles with h = 4 hull vertices.
+    assert_eq!(m.triangles.len(), 2 * p.points.len() - 2 - 4);
+}
+
+#[test]
+fn grid_points_are_cocircular_but_valid() {
+    let mut p = Pslg::default();
+    for i in 0..20 {
+        for j in 0..20 {
+            p.points.push([i as f64, j as f64]);
+        }
+    }
+    let m = triangulate(&p, &Options::default()).unwrap();
+    assert_ok(&m, 361.0);
+    assert_eq!(m.triangles.len(), 2 * 19 * 19);
+}
+
+#[test]
+fn square_with_hole_conforms_and_meets_quality() {
+    let p = square_with_hole();
+    let m = triangulate(&p, &Options::default()).unwrap();
+    assert_ok(&m, 1.0 - 0.04);
+    let opts = Options {
+        min_angle: Some(30.0),
+        max_area: Some(0.001),
+        ..Options::default()
+    };
+    let m = triangulate(&p, &opts).unwrap();
+    assert_ok(&m, 1.0 - 0.04);
+    let (lo, _) = m.angle_range();
+    assert!(lo >= 30.0 - 1e-9, "min angle {lo}");
+    assert!(m.triangles.iter().all(|t| {
+        let [a, b, c] = t.map(|v| m.vertices[v as usize]);
+        0.5 * crate::geometry::area2(a, b, c) <= 0.001
+    }));
+    assert!(m.complete);
+}
+
+#[test]
+fn regions_get_attributes_and_bounds() {
+    let mut p = square_with_hole();
+    p.holes.clear();
+    p.regions = vec![
+        Region {
+            point: [0.5, 0.5],
+            attribute: 7.0,
+            max_area: Some(0.0005),
+        },
+        Region {
+            point: [0.1, 0.1],
+            attribute: 3.0,
+            max_area: None,
+        },
+    ];
+    let opts = Options {
+        region_attributes: true,
+        region_max_area: true,
+        ..Options::default()
+    };
+    let m = triangulate(&p, &opts).unwrap();
+    assert_ok(&m, 1.0);
+    let inner = m.triangle_attributes.iter().filter(|&&a| a == 7.0).count();
+    let outer = m.triangle_attributes.iter().filter(|&&a| a == 3.0).count();
+    assert_eq!(inner + outer, m.triangles.len());
+    assert!(inner >= 80, "inner region has {inner} triangles");
+}
+
+#[test]
+fn small_angle_terminates() {
+    let mut p = Pslg::default();
+    let a = 1f64.to_radians();
+    p.points = vec![
+        [0.0, 0.0],
+        [1.0, 0.0],
+        [a.cos(), a.sin()],
+        [-0.5, -0.5],
+        [1.5, -0.5],
+        [1.5, 1.5],
+        [-0.5, 1.5],
+    ];
+    p.segments = vec![[0, 1], [0, 2], [3, 4], [4, 5], [5, 6], [6, 3]];
+    let opts = Options {
+        min_angle: Some(30.0),
+        ..Options::default()
+    };
+    let m = triangulate(&p, &opts).unwrap();
+    assert_ok(&m, 4.0);
+    assert!(m.complete);
+}
+
+#[test]
+fn steiner_cap_reports_incomplete() {
+    let p = square_with_hole();
+    let opts = Options {
+        min_angle: Some(33.0),
+        max_area: Some(1e-5),
+        max_steiner: Some(50),
+        ..Options::default()
+    };
+    let m = triangulate(&p, &opts).unwrap();
+    assert!(!m.complete);
+    m.validate().unwrap();
+}
+
+#[test]
+fn four_points() {
+    let mut p = Pslg::default();
+    p.points = vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0], [0.5, 0.2]];
+    let m = triangulate(&p, &Options::default()).unwrap();
+    assert_ok(&m, 1.0);
+}
+
+#[test]
+fn eight_points() {
+    let p = square_with_hole();
+    let p = Pslg { segments: vec![], holes: vec![], ..p };
+    let m = triangulate(&p, &Options::default()).unwrap();
+    assert_ok(&m, 1.0);
+}

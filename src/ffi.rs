@@ -1,1 +1,1561 @@
-//! The C ABI (see include/idmesh.h).
+//! The C ABI (see `include/idmesh.h`, generated from this file by cbindgen).
+//!
+//! A thin layer over [`crate::triangulate`]: a handle collects the PSLG and the options, refine
+//! runs the Rust mesher, and getters lend pointers into the resulting [`TriMesh`].
+//!
+//! Conventions shared by every function returning [`idm_status`]:
+//! * the body runs under `catch_unwind`, so a panic becomes [`idm_status::IDM_ERR_INTERNAL`]
+//!   instead of unwinding into C (which would be undefined behaviour);
+//! * every pointer is checked before use (NULL is allowed for an array whose count is 0), and
+//!   every count is checked for overflow before it is turned into a byte length;
+//! * inputs are copied, so the caller may free its arrays as soon as the call returns;
+//! * out-parameters are written only on success, and a failed call leaves the handle unchanged;
+//! * a failure stores a message naming the bad item in a thread-local buffer
+//!   ([`idm_last_error`]); success clears it.
+//!
+//! The C names (`idm_status`, `IDM_OK`, ...) are used on the Rust side too so that cbindgen needs
+//! no renaming rules and a reader can grep one name across both languages.
+
+#![allow(non_camel_case_types)]
+#![deny(unsafe_op_in_unsafe_fn)]
+
+use std::cell::RefCell;
+use std::ffi::{c_char, c_void, CString};
+use std::mem::size_of;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::Arc;
+
+use crate::error::Error;
+use crate::input::Region;
+use crate::mesh2d::{triangulate, Options, SizingFn, TriMesh, NONE};
+
+/// The "no index" value of the index arrays (a missing neighbour): `UINT32_MAX`.
+pub const IDM_NONE: u32 = u32::MAX;
+
+/// The result of every status-returning call. The values are fixed (ABI).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum idm_status {
+    /// Success.
+    IDM_OK = 0,
+    /// Refinement stopped at the Steiner point cap (`max_steiner`); the mesh is valid,
+    /// conforming and readable, but does not meet every quality or size bound.
+    IDM_INCOMPLETE = 1,
+    /// A required pointer argument was NULL (the message names it).
+    IDM_ERR_NULL_POINTER = 2,
+    /// A bad count or option value (the message says which).
+    IDM_ERR_INVALID_ARGUMENT = 3,
+    /// The PSLG is invalid (the message names the offending point, segment, hole or region).
+    IDM_ERR_INVALID_INPUT = 4,
+    /// A getter was called with no mesh: before a successful refine, or after the input or
+    /// options changed.
+    IDM_ERR_NO_MESH = 5,
+    /// A requested feature is not implemented.
+    IDM_ERR_UNSUPPORTED = 6,
+    /// A caught panic or a failed internal invariant: a bug in idmesh, please report it.
+    IDM_ERR_INTERNAL = 7,
+}
+
+/// Meshing options. Fill it with `idm_options2d_default` first, then change what you need, so
+/// that code keeps working if fields are ever appended. Booleans are `int32_t`: 0 is false,
+/// anything else true.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct idm_options2d {
+    /// Minimum angle in degrees (Triangle's `-q`); `<= 0` means no angle refinement. Must not
+    /// be NaN. Default 0.
+    pub min_angle: f64,
+    /// Global maximum triangle area (Triangle's `-a<area>`); `<= 0` means none. Must not be
+    /// NaN. Default 0.
+    pub max_area: f64,
+    /// Apply each region's maximum area (Triangle's `-a`). Default 0.
+    pub region_max_area: i32,
+    /// Write each region's attribute to its triangles (Triangle's `-A`). Default 0.
+    pub region_attributes: i32,
+    /// Mesh the whole convex hull of the points (Triangle's `-c`). Default 0.
+    pub convex_hull: i32,
+    /// Use off-centers instead of circumcenters for skinny triangles. Default 1.
+    pub off_centers: i32,
+    /// Split crossing segments at their intersection instead of reporting them. Default 0.
+    pub split_crossings: i32,
+    /// Forbid Steiner points on boundary segments (Triangle's `-Y`); not implemented yet, so
+    /// refine returns `IDM_ERR_UNSUPPORTED` when set. Default 0.
+    pub no_boundary_steiner: i32,
+    /// Maximum number of Steiner points (Triangle's `-S`); `< 0` means no cap. When the cap is
+    /// reached refine returns `IDM_INCOMPLETE`. Default -1.
+    pub max_steiner: i64,
+}
+
+/// A user sizing test (Triangle's `triunsuitable`): returns nonzero when the triangle with
+/// counter-clockwise corners `a`, `b`, `c` (each pointing to 2 doubles, valid only during the
+/// call) and area `area` is too large and must be split.
+///
+/// It is called only during `idm_mesher2d_refine` on the handle it was set on, from the thread
+/// that called refine, and `user` is passed through untouched. It must be deterministic, must
+/// not call back into the same handle, and must return normally (no C++ exception, no
+/// `longjmp`).
+pub type idm_sizing2d_fn = Option<
+    unsafe extern "C" fn(
+        user: *mut c_void,
+        a: *const f64,
+        b: *const f64,
+        c: *const f64,
+        area: f64,
+    ) -> i32,
+>;
+
+/// An opaque 2D mesher: the input PSLG and options, and the output of the last successful
+/// refine. Create with `idm_mesher2d_new`, destroy with `idm_mesher2d_free`. A handle may be
+/// moved between threads, but must not be used by two threads at once; distinct handles are
+/// fully independent.
+pub struct idm_mesher2d {
+    /// The input collected so far (markers always have one entry per item: the defaults 0
+    /// for points and 1 for segments fill in for calls made without markers).
+    pslg: crate::input::Pslg,
+    /// The options, including the sizing callback.
+    opts: Options,
+    /// The output of the last successful (or `IDM_INCOMPLETE`) refine; dropped by any change
+    /// of input or options, so getters never describe a mesh of other input.
+    mesh: Option<TriMesh>,
+}
+
+/// A failed (or incomplete) call: the status to return and the message for `idm_last_error`.
+struct Failure {
+    status: idm_status,
+    message: String,
+}
+
+impl Failure {
+    fn new(status: idm_status, message: impl Into<String>) -> Self {
+        Failure {
+            status,
+            message: message.into(),
+        }
+    }
+
+    fn null(what: &str) -> Self {
+        Failure::new(
+            idm_status::IDM_ERR_NULL_POINTER,
+            format!("argument `{what}` is NULL"),
+        )
+    }
+
+    fn invalid(message: impl Into<String>) -> Self {
+        Failure::new(idm_status::IDM_ERR_INVALID_ARGUMENT, message)
+    }
+
+    fn no_mesh() -> Self {
+        Failure::new(
+            idm_status::IDM_ERR_NO_MESH,
+            "no mesh: call idm_mesher2d_refine first (the mesh is dropped when refine fails or \
+             the input or options change)",
+        )
+    }
+}
+
+impl From<Error> for Failure {
+    fn from(e: Error) -> Self {
+        let status = match &e {
+            Error::Input(_) => idm_status::IDM_ERR_INVALID_INPUT,
+            Error::InvalidOption(_) => idm_status::IDM_ERR_INVALID_ARGUMENT,
+            Error::Unsupported(_) => idm_status::IDM_ERR_UNSUPPORTED,
+            Error::Internal(_) => idm_status::IDM_ERR_INTERNAL,
+        };
+        Failure::new(status, e.to_string())
+    }
+}
+
+type CallResult = Result<(), Failure>;
+
+thread_local! {
+    /// The message of the last failure on this thread; empty after a success.
+    static LAST_ERROR: RefCell<CString> = RefCell::new(CString::default());
+}
+
+/// Stores `message` as this thread's last error. Interior NULs (impossible in our own
+/// messages, but a panic payload could carry one) are escaped so the text is never cut short.
+fn set_last_error(message: &str) {
+    let text = CString::new(message.replace('\0', "\\0")).unwrap_or_default();
+    // `try_with` fails only during thread teardown, when nobody can read the message anyway.
+    let _ = LAST_ERROR.try_with(|e| *e.borrow_mut() = text);
+}
+
+/// Clears this thread's last error, without reallocating when it is already empty so that a
+/// pointer from `idm_last_error` stays valid across a run of successful calls.
+fn clear_last_error() {
+    let _ = LAST_ERROR.try_with(|e| {
+        let mut e = e.borrow_mut();
+        if !e.as_bytes().is_empty() {
+            *e = CString::default();
+        }
+    });
+}
+
+/// Runs the body of a status-returning entry point: catches panics, maps the result to a
+/// status and records or clears the thread's last error.
+fn guard(body: impl FnOnce() -> CallResult) -> idm_status {
+    let outcome = catch_unwind(AssertUnwindSafe(body)).unwrap_or_else(|payload| {
+        let what = payload
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "unknown panic payload".to_string());
+        Err(Failure::from(Error::Internal(format!("panic: {what}"))))
+    });
+    match outcome {
+        Ok(()) => {
+            clear_last_error();
+            idm_status::IDM_OK
+        }
+        Err(f) => {
+            set_last_error(&f.message);
+            f.status
+        }
+    }
+}
+
+/// `count * k`, or an error naming `what` when it overflows.
+fn scaled(count: usize, k: usize, what: &str) -> Result<usize, Failure> {
+    count
+        .checked_mul(k)
+        .ok_or_else(|| Failure::invalid(format!("`{what}` = {count} is too large")))
+}
+
+/// Borrows `len` elements at `ptr` as a slice after checking what can be checked: NULL (allowed
+/// only when `len` is 0), alignment, and that the byte length fits `isize`.
+///
+/// # Safety
+/// When the checks pass, `ptr` must point to `len` readable elements that stay unchanged during
+/// the call (the caller's contract, documented in the header).
+unsafe fn input_slice<'a, T>(ptr: *const T, len: usize, what: &str) -> Result<&'a [T], Failure> {
+    if len == 0 {
+        return Ok(&[]);
+    }
+    if ptr.is_null() {
+        return Err(Failure::new(
+            idm_status::IDM_ERR_NULL_POINTER,
+            format!("argument `{what}` is NULL but {len} values were requested from it"),
+        ));
+    }
+    if !ptr.is_aligned() {
+        return Err(Failure::invalid(format!(
+            "argument `{what}` is not suitably aligned"
+        )));
+    }
+    match len.checked_mul(size_of::<T>()) {
+        Some(bytes) if bytes <= isize::MAX as usize => {}
+        _ => {
+            return Err(Failure::invalid(format!(
+                "argument `{what}`: {len} values is too large"
+            )))
+        }
+    }
+    // SAFETY: non-null, aligned, size in range; readability is the caller's contract.
+    Ok(unsafe { std::slice::from_raw_parts(ptr, len) })
+}
+
+/// Like [`input_slice`] for a nullable array: NULL gives `None`.
+///
+/// # Safety
+/// As [`input_slice`].
+unsafe fn optional_slice<'a, T>(
+    ptr: *const T,
+    len: usize,
+    what: &str,
+) -> Result<Option<&'a [T]>, Failure> {
+    if ptr.is_null() {
+        Ok(None)
+    } else {
+        // SAFETY: forwarded contract.
+        unsafe { input_slice(ptr, len, what) }.map(Some)
+    }
+}
+
+/// Checks an out-parameter pointer: non-NULL and aligned.
+fn check_out<T>(ptr: *mut T, what: &str) -> CallResult {
+    if ptr.is_null() {
+        Err(Failure::null(what))
+    } else if !ptr.is_aligned() {
+        Err(Failure::invalid(format!(
+            "argument `{what}` is not suitably aligned"
+        )))
+    } else {
+        Ok(())
+    }
+}
+
+/// Writes through an optional out-parameter already checked by [`check_out`] (NULL: skipped).
+///
+/// # Safety
+/// `ptr` must be NULL or valid for a write of `T`.
+unsafe fn write_out<T>(ptr: *mut T, value: T) {
+    if !ptr.is_null() {
+        // SAFETY: the caller's contract.
+        unsafe { ptr.write(value) };
+    }
+}
+
+/// Borrows the handle mutably.
+///
+/// # Safety
+/// `m` must be NULL or a live handle from `idm_mesher2d_new` not used elsewhere meanwhile.
+unsafe fn handle_mut<'a>(m: *mut idm_mesher2d) -> Result<&'a mut idm_mesher2d, Failure> {
+    // SAFETY: the caller's contract.
+    unsafe { m.as_mut() }.ok_or_else(|| Failure::null("m"))
+}
+
+/// Borrows the handle's mesh, or reports that there is none.
+///
+/// # Safety
+/// As [`handle_mut`].
+unsafe fn mesh_of<'a>(m: *const idm_mesher2d) -> Result<&'a TriMesh, Failure> {
+    // SAFETY: the caller's contract.
+    let m = unsafe { m.as_ref() }.ok_or_else(|| Failure::null("m"))?;
+    m.mesh.as_ref().ok_or_else(Failure::no_mesh)
+}
+
+/// Pointer to the first element of an output array, or NULL when it is empty (an empty `Vec`'s
+/// dangling pointer must not reach C code).
+fn array_ptr<T, U>(v: &[T]) -> *const U {
+    if v.is_empty() {
+        std::ptr::null()
+    } else {
+        v.as_ptr().cast()
+    }
+}
+
+/// Grows `v` by `extra` elements, reporting allocation failure instead of aborting.
+fn reserve<T>(v: &mut Vec<T>, extra: usize, what: &str) -> CallResult {
+    v.try_reserve(extra)
+        .map_err(|_| Failure::invalid(format!("out of memory adding {extra} {what}")))
+}
+
+/// Rejects a count that would push the number of items past what `uint32_t` indices address.
+fn check_index_room(have: usize, extra: usize, what: &str) -> CallResult {
+    match have.checked_add(extra) {
+        Some(total) if total < NONE as usize => Ok(()),
+        _ => Err(Failure::invalid(format!(
+            "adding {extra} {what} to {have} exceeds the uint32_t index range"
+        ))),
+    }
+}
+
+/// A C sizing callback with its user pointer, callable as a Rust [`SizingFn`].
+#[derive(Clone, Copy)]
+struct CSizing {
+    f: unsafe extern "C" fn(*mut c_void, *const f64, *const f64, *const f64, f64) -> i32,
+    user: *mut c_void,
+}
+
+// SAFETY: the raw `user` pointer is what makes this type neither Send nor Sync. The mesher calls
+// the sizing function only inside `idm_mesher2d_refine`, from the thread that called it, and
+// keeps no copy after the handle is freed. Whether `user` (and the callback) may be used from
+// the thread that calls refine is the caller's contract, stated in the header at
+// `idm_sizing2d_fn` and `idm_mesher2d_set_sizing`; Rust cannot check it.
+unsafe impl Send for CSizing {}
+// SAFETY: as for Send: concurrent use would require the caller to refine one handle from two
+// threads at once, which the header forbids.
+unsafe impl Sync for CSizing {}
+
+impl CSizing {
+    /// Calls the C function. A method (rather than field accesses in the closure) so that the
+    /// closure captures the whole `Send + Sync` struct, not its bare raw pointer.
+    fn call(&self, a: [f64; 2], b: [f64; 2], c: [f64; 2], area: f64) -> bool {
+        // SAFETY: the pointers refer to locals that outlive the call; the function pointer and
+        // `user` are the caller's contract (see `idm_mesher2d_set_sizing`).
+        unsafe { (self.f)(self.user, a.as_ptr(), b.as_ptr(), c.as_ptr(), area) != 0 }
+    }
+}
+
+/// Fills `out` with the default options (the same defaults as the Rust `Options::default()`).
+/// NULL is a no-op.
+///
+/// # Safety
+/// `out` must be NULL or valid for writing an `idm_options2d`.
+#[no_mangle]
+pub unsafe extern "C" fn idm_options2d_default(out: *mut idm_options2d) {
+    if out.is_null() || !out.is_aligned() {
+        return;
+    }
+    let d = Options::default();
+    let value = idm_options2d {
+        min_angle: d.min_angle.unwrap_or(0.0),
+        max_area: d.max_area.unwrap_or(0.0),
+        region_max_area: d.region_max_area.into(),
+        region_attributes: d.region_attributes.into(),
+        convex_hull: d.convex_hull.into(),
+        off_centers: d.off_centers.into(),
+        split_crossings: d.split_crossings.into(),
+        no_boundary_steiner: d.no_boundary_steiner.into(),
+        max_steiner: d
+            .max_steiner
+            .map_or(-1, |n| i64::try_from(n).unwrap_or(i64::MAX)),
+    };
+    // SAFETY: checked non-null and aligned; validity is the caller's contract.
+    unsafe { out.write(value) };
+}
+
+/// The message of the last failed `idm_` call on this thread, or "" when the last
+/// status-returning call succeeded. Never NULL. The string is owned by the library and stays
+/// valid until the next `idm_` call on this thread.
+#[no_mangle]
+pub extern "C" fn idm_last_error() -> *const c_char {
+    static EMPTY: &[u8] = b"\0";
+    LAST_ERROR
+        .try_with(|e| e.borrow().as_ptr())
+        .unwrap_or(EMPTY.as_ptr().cast())
+}
+
+/// The library version ("major.minor.patch"), a static string.
+#[no_mangle]
+pub extern "C" fn idm_version() -> *const c_char {
+    concat!(env!("CARGO_PKG_VERSION"), "\0").as_ptr().cast()
+}
+
+/// Creates an empty mesher with default options and stores it in `*out`.
+///
+/// # Safety
+/// `out` must be NULL (an error) or valid for writing a pointer.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher2d_new(out: *mut *mut idm_mesher2d) -> idm_status {
+    guard(|| {
+        check_out(out, "out")?;
+        let m = Box::new(idm_mesher2d {
+            pslg: Default::default(),
+            opts: Options::default(),
+            mesh: None,
+        });
+        // SAFETY: checked above.
+        unsafe { out.write(Box::into_raw(m)) };
+        Ok(())
+    })
+}
+
+/// Destroys a mesher and everything it lent out. NULL is a no-op.
+///
+/// # Safety
+/// `m` must be NULL or a handle from `idm_mesher2d_new` not freed before and not in use.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher2d_free(m: *mut idm_mesher2d) {
+    if m.is_null() {
+        return;
+    }
+    // Dropping plain vectors cannot panic; the guard keeps that true even if a field grows a
+    // Drop impl one day. The status is dropped because this function returns nothing.
+    let _ = catch_unwind(AssertUnwindSafe(|| {
+        // SAFETY: the caller's contract.
+        drop(unsafe { Box::from_raw(m) });
+    }));
+}
+
+/// Appends `count` points: `xy` holds 2*count doubles (x0, y0, x1, y1, ...). `markers` is NULL
+/// (all 0) or holds `count` markers. Points are numbered 0, 1, ... across all calls.
+///
+/// # Safety
+/// `m` must be a live handle; `xy` and (when not NULL) `markers` must hold the stated number
+/// of values.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher2d_add_points(
+    m: *mut idm_mesher2d,
+    xy: *const f64,
+    count: usize,
+    markers: *const i32,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let m = unsafe { handle_mut(m) }?;
+        let xy = unsafe { input_slice(xy, scaled(count, 2, "count")?, "xy") }?;
+        let markers = unsafe { optional_slice(markers, count, "markers") }?;
+        check_index_room(m.pslg.points.len(), count, "points")?;
+        reserve(&mut m.pslg.points, count, "points")?;
+        reserve(&mut m.pslg.point_markers, count, "point markers")?;
+        m.pslg
+            .points
+            .extend(xy.chunks_exact(2).map(|p| [p[0], p[1]]));
+        match markers {
+            Some(mk) => m.pslg.point_markers.extend_from_slice(mk),
+            None => m.pslg.point_markers.resize(m.pslg.points.len(), 0),
+        }
+        m.mesh = None;
+        Ok(())
+    })
+}
+
+/// Appends `count` segments: `ab` holds 2*count 0-based point indices. Indices may refer to
+/// points added later; they are checked by refine. `markers` is NULL (all 1, as Triangle) or
+/// holds `count` markers.
+///
+/// # Safety
+/// `m` must be a live handle; `ab` and (when not NULL) `markers` must hold the stated number
+/// of values.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher2d_add_segments(
+    m: *mut idm_mesher2d,
+    ab: *const u32,
+    count: usize,
+    markers: *const i32,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let m = unsafe { handle_mut(m) }?;
+        let ab = unsafe { input_slice(ab, scaled(count, 2, "count")?, "ab") }?;
+        let markers = unsafe { optional_slice(markers, count, "markers") }?;
+        check_index_room(m.pslg.segments.len(), count, "segments")?;
+        reserve(&mut m.pslg.segments, count, "segments")?;
+        reserve(&mut m.pslg.segment_markers, count, "segment markers")?;
+        m.pslg
+            .segments
+            .extend(ab.chunks_exact(2).map(|s| [s[0], s[1]]));
+        match markers {
+            Some(mk) => m.pslg.segment_markers.extend_from_slice(mk),
+            None => m.pslg.segment_markers.resize(m.pslg.segments.len(), 1),
+        }
+        m.mesh = None;
+        Ok(())
+    })
+}
+
+/// Appends `count` hole seeds: `xy` holds 2*count doubles. The triangles reachable from a seed
+/// without crossing a segment are removed.
+///
+/// # Safety
+/// `m` must be a live handle; `xy` must hold 2*count doubles.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher2d_add_holes(
+    m: *mut idm_mesher2d,
+    xy: *const f64,
+    count: usize,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let m = unsafe { handle_mut(m) }?;
+        let xy = unsafe { input_slice(xy, scaled(count, 2, "count")?, "xy") }?;
+        reserve(&mut m.pslg.holes, count, "holes")?;
+        m.pslg
+            .holes
+            .extend(xy.chunks_exact(2).map(|p| [p[0], p[1]]));
+        m.mesh = None;
+        Ok(())
+    })
+}
+
+/// Appends `count` region seeds: `xy` holds 2*count doubles, `attributes` `count` regional
+/// attributes, and `max_areas` is NULL (no regional bound) or holds `count` area bounds, where
+/// `<= 0` means none (NaN is rejected). Attributes are written only with
+/// `region_attributes`, area bounds applied only with `region_max_area`.
+///
+/// # Safety
+/// `m` must be a live handle; the arrays must hold the stated number of values.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher2d_add_regions(
+    m: *mut idm_mesher2d,
+    xy: *const f64,
+    attributes: *const f64,
+    max_areas: *const f64,
+    count: usize,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let m = unsafe { handle_mut(m) }?;
+        let xy = unsafe { input_slice(xy, scaled(count, 2, "count")?, "xy") }?;
+        let attributes = unsafe { input_slice(attributes, count, "attributes") }?;
+        let max_areas = unsafe { optional_slice(max_areas, count, "max_areas") }?;
+        if let Some(i) = max_areas.and_then(|a| a.iter().position(|x| x.is_nan())) {
+            return Err(Failure::invalid(format!(
+                "max_areas[{i}] (region {}) is NaN",
+                m.pslg.regions.len() + i
+            )));
+        }
+        reserve(&mut m.pslg.regions, count, "regions")?;
+        for i in 0..count {
+            let bound = max_areas.map_or(0.0, |a| a[i]);
+            m.pslg.regions.push(Region {
+                point: [xy[2 * i], xy[2 * i + 1]],
+                attribute: attributes[i],
+                max_area: (bound > 0.0).then_some(bound),
+            });
+        }
+        m.mesh = None;
+        Ok(())
+    })
+}
+
+/// Replaces the options (the sizing callback is kept; see `idm_mesher2d_set_sizing`). Value
+/// ranges are checked by refine, except NaN angle or area, rejected here.
+///
+/// # Safety
+/// `m` must be a live handle; `opts` must point to an `idm_options2d`.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher2d_set_options(
+    m: *mut idm_mesher2d,
+    opts: *const idm_options2d,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let m = unsafe { handle_mut(m) }?;
+        let o = unsafe { input_slice(opts, 1, "opts") }?[0];
+        if o.min_angle.is_nan() {
+            return Err(Failure::invalid("option min_angle is NaN"));
+        }
+        if o.max_area.is_nan() {
+            return Err(Failure::invalid("option max_area is NaN"));
+        }
+        let positive = |x: f64| (x > 0.0).then_some(x);
+        m.opts = Options {
+            min_angle: positive(o.min_angle),
+            max_area: positive(o.max_area),
+            region_max_area: o.region_max_area != 0,
+            region_attributes: o.region_attributes != 0,
+            convex_hull: o.convex_hull != 0,
+            max_steiner: u64::try_from(o.max_steiner).ok(),
+            no_boundary_steiner: o.no_boundary_steiner != 0,
+            off_centers: o.off_centers != 0,
+            split_crossings: o.split_crossings != 0,
+            sizing: m.opts.sizing.take(),
+            verbose: m.opts.verbose,
+        };
+        m.mesh = None;
+        Ok(())
+    })
+}
+
+/// Sets the user sizing test (see `idm_sizing2d_fn`); `fn` NULL clears it (`user` is then
+/// ignored). `user` is stored, never dereferenced by the library, and handed to every call of
+/// `fn`; it must stay valid, and be usable from whichever thread calls refine, until the
+/// sizing test is cleared or the handle freed.
+///
+/// # Safety
+/// `m` must be a live handle; `fn` must be NULL or a function with the `idm_sizing2d_fn`
+/// contract.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher2d_set_sizing(
+    m: *mut idm_mesher2d,
+    r#fn: idm_sizing2d_fn,
+    user: *mut c_void,
+) -> idm_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let m = unsafe { handle_mut(m) }?;
+        m.opts.sizing = r#fn.map(|f| {
+            let c = CSizing { f, user };
+            Arc::new(move |a, b, c3, area| c.call(a, b, c3, area)) as SizingFn
+        });
+        m.mesh = None;
+        Ok(())
+    })
+}
+
+/// Meshes the input with the current options, replacing any previous mesh. Returns `IDM_OK`,
+/// `IDM_INCOMPLETE` (Steiner cap reached; the mesh is readable and valid; the message says so)
+/// or an error, in which case there is no mesh. The input is kept either way.
+///
+/// # Safety
+/// `m` must be a live handle.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher2d_refine(m: *mut idm_mesher2d) -> idm_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let m = unsafe { handle_mut(m) }?;
+        // Dropped first so that a failure (or a panic caught by the guard) leaves no stale mesh.
+        m.mesh = None;
+        let mesh = triangulate(&m.pslg, &m.opts)?;
+        let (complete, steiner) = (mesh.complete, mesh.steiner_points);
+        m.mesh = Some(mesh);
+        if complete {
+            Ok(())
+        } else {
+            Err(Failure::new(
+                idm_status::IDM_INCOMPLETE,
+                format!(
+                    "refinement stopped at the Steiner point cap after {steiner} Steiner \
+                     points: the mesh is valid but does not meet every bound"
+                ),
+            ))
+        }
+    })
+}
+
+/// The output sizes: vertices, triangles and subsegments. Each out-pointer may be NULL when
+/// that number is not wanted.
+///
+/// # Safety
+/// `m` must be a live handle; each out-pointer NULL or valid for a write.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher2d_counts(
+    m: *const idm_mesher2d,
+    num_vertices: *mut usize,
+    num_triangles: *mut usize,
+    num_segments: *mut usize,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let mesh = unsafe { mesh_of(m) }?;
+        for (p, what) in [
+            (num_vertices, "num_vertices"),
+            (num_triangles, "num_triangles"),
+            (num_segments, "num_segments"),
+        ] {
+            if !p.is_null() {
+                check_out(p, what)?;
+            }
+        }
+        unsafe {
+            write_out(num_vertices, mesh.vertices.len());
+            write_out(num_triangles, mesh.triangles.len());
+            write_out(num_segments, mesh.segments.len());
+        }
+        Ok(())
+    })
+}
+
+/// Lends the vertex coordinates: `*xy` gets 2*count doubles, `*count` the number of vertices.
+/// Vertex i < (number of input points) is input point i.
+///
+/// # Safety
+/// `m` must be a live handle; `xy` and `count` valid for a write.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher2d_vertices(
+    m: *const idm_mesher2d,
+    xy: *mut *const f64,
+    count: *mut usize,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let mesh = unsafe { mesh_of(m) }?;
+        check_out(xy, "xy")?;
+        check_out(count, "count")?;
+        unsafe {
+            xy.write(array_ptr(&mesh.vertices));
+            count.write(mesh.vertices.len());
+        }
+        Ok(())
+    })
+}
+
+/// Lends one marker per vertex (`*count` = number of vertices).
+///
+/// # Safety
+/// `m` must be a live handle; `markers` and `count` valid for a write.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher2d_vertex_markers(
+    m: *const idm_mesher2d,
+    markers: *mut *const i32,
+    count: *mut usize,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let mesh = unsafe { mesh_of(m) }?;
+        check_out(markers, "markers")?;
+        check_out(count, "count")?;
+        unsafe {
+            markers.write(array_ptr(&mesh.vertex_markers));
+            count.write(mesh.vertex_markers.len());
+        }
+        Ok(())
+    })
+}
+
+/// Lends the triangles: `*abc` gets 3*count vertex indices, each triangle counter-clockwise.
+///
+/// # Safety
+/// `m` must be a live handle; `abc` and `count` valid for a write.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher2d_triangles(
+    m: *const idm_mesher2d,
+    abc: *mut *const u32,
+    count: *mut usize,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let mesh = unsafe { mesh_of(m) }?;
+        check_out(abc, "abc")?;
+        check_out(count, "count")?;
+        unsafe {
+            abc.write(array_ptr(&mesh.triangles));
+            count.write(mesh.triangles.len());
+        }
+        Ok(())
+    })
+}
+
+/// Lends the neighbours: `*nbr` gets 3*count triangle indices; entry 3t+i is the triangle
+/// across the edge opposite corner i of triangle t, or `IDM_NONE` on the boundary.
+///
+/// # Safety
+/// `m` must be a live handle; `nbr` and `count` valid for a write.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher2d_neighbors(
+    m: *const idm_mesher2d,
+    nbr: *mut *const u32,
+    count: *mut usize,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let mesh = unsafe { mesh_of(m) }?;
+        check_out(nbr, "nbr")?;
+        check_out(count, "count")?;
+        unsafe {
+            nbr.write(array_ptr(&mesh.neighbors));
+            count.write(mesh.neighbors.len());
+        }
+        Ok(())
+    })
+}
+
+/// Lends one regional attribute per triangle (0 for triangles in no region). `*count` is 0
+/// (and `*attr` NULL) unless the `region_attributes` option was set.
+///
+/// # Safety
+/// `m` must be a live handle; `attr` and `count` valid for a write.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher2d_triangle_attributes(
+    m: *const idm_mesher2d,
+    attr: *mut *const f64,
+    count: *mut usize,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let mesh = unsafe { mesh_of(m) }?;
+        check_out(attr, "attr")?;
+        check_out(count, "count")?;
+        unsafe {
+            attr.write(array_ptr(&mesh.triangle_attributes));
+            count.write(mesh.triangle_attributes.len());
+        }
+        Ok(())
+    })
+}
+
+/// Lends the subsegments: `*ab` gets 2*count vertex indices and `*markers` (which may be NULL
+/// when not wanted) one marker per subsegment, inherited from its input segment.
+///
+/// # Safety
+/// `m` must be a live handle; `ab` and `count` valid for a write, `markers` NULL or valid.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher2d_segments(
+    m: *const idm_mesher2d,
+    ab: *mut *const u32,
+    markers: *mut *const i32,
+    count: *mut usize,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let mesh = unsafe { mesh_of(m) }?;
+        check_out(ab, "ab")?;
+        if !markers.is_null() {
+            check_out(markers, "markers")?;
+        }
+        check_out(count, "count")?;
+        unsafe {
+            ab.write(array_ptr(&mesh.segments));
+            write_out(markers, array_ptr(&mesh.segment_markers));
+            count.write(mesh.segments.len());
+        }
+        Ok(())
+    })
+}
+
+/// Checks the output mesh invariants exactly (index ranges, counter-clockwise orientation,
+/// neighbour symmetry, empty circumcircles, segments present as edges). `IDM_OK`, or
+/// `IDM_ERR_INTERNAL` with a message naming the first violation (a bug).
+///
+/// # Safety
+/// `m` must be a live handle.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher2d_validate(m: *const idm_mesher2d) -> idm_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let mesh = unsafe { mesh_of(m) }?;
+        mesh.validate().map_err(|msg| {
+            Failure::new(
+                idm_status::IDM_ERR_INTERNAL,
+                format!("mesh validation failed: {msg}"),
+            )
+        })
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::input::Pslg;
+    use std::ffi::CStr;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    use idm_status::*;
+
+    /// The current thread's last error as a Rust string.
+    fn last_error() -> String {
+        // SAFETY: idm_last_error never returns NULL and the string lives until the next call.
+        unsafe { CStr::from_ptr(idm_last_error()) }
+            .to_str()
+            .unwrap()
+            .to_string()
+    }
+
+    /// A fresh handle, freed on drop so a failing assertion does not leak it.
+    struct Handle(*mut idm_mesher2d);
+
+    impl Handle {
+        fn new() -> Self {
+            let mut m = std::ptr::null_mut();
+            assert_eq!(unsafe { idm_mesher2d_new(&mut m) }, IDM_OK);
+            assert!(!m.is_null());
+            Handle(m)
+        }
+    }
+
+    impl Drop for Handle {
+        fn drop(&mut self) {
+            unsafe { idm_mesher2d_free(self.0) };
+        }
+    }
+
+    /// A 10x10 square with a 2x2 square hole in the middle; outer segments marker 1, hole
+    /// segments marker 2, point markers 10 + index.
+    fn square_with_hole() -> Pslg {
+        Pslg {
+            points: vec![
+                [0.0, 0.0],
+                [10.0, 0.0],
+                [10.0, 10.0],
+                [0.0, 10.0],
+                [4.0, 4.0],
+                [6.0, 4.0],
+                [6.0, 6.0],
+                [4.0, 6.0],
+            ],
+            point_markers: (10..18).collect(),
+            segments: vec![
+                [0, 1],
+                [1, 2],
+                [2, 3],
+                [3, 0],
+                [4, 5],
+                [5, 6],
+                [6, 7],
+                [7, 4],
+            ],
+            segment_markers: vec![1, 1, 1, 1, 2, 2, 2, 2],
+            holes: vec![[5.0, 5.0]],
+            regions: Vec::new(),
+        }
+    }
+
+    /// Loads `p` into the handle through the C entry points.
+    fn load(m: &Handle, p: &Pslg) {
+        let xy: Vec<f64> = p.points.iter().flatten().copied().collect();
+        let ab: Vec<u32> = p.segments.iter().flatten().copied().collect();
+        let holes: Vec<f64> = p.holes.iter().flatten().copied().collect();
+        unsafe {
+            assert_eq!(
+                idm_mesher2d_add_points(m.0, xy.as_ptr(), p.points.len(), p.point_markers.as_ptr()),
+                IDM_OK
+            );
+            assert_eq!(
+                idm_mesher2d_add_segments(
+                    m.0,
+                    ab.as_ptr(),
+                    p.segments.len(),
+                    p.segment_markers.as_ptr()
+                ),
+                IDM_OK
+            );
+            assert_eq!(
+                idm_mesher2d_add_holes(m.0, holes.as_ptr(), p.holes.len()),
+                IDM_OK
+            );
+        }
+    }
+
+    fn options(min_angle: f64, max_area: f64) -> idm_options2d {
+        let mut o = std::mem::MaybeUninit::<idm_options2d>::uninit();
+        unsafe { idm_options2d_default(o.as_mut_ptr()) };
+        let mut o = unsafe { o.assume_init() };
+        o.min_angle = min_angle;
+        o.max_area = max_area;
+        o
+    }
+
+    /// Reads the whole output of the handle back into a `TriMesh` (only the fields the C API
+    /// exposes), through the getters.
+    fn read_back(m: &Handle) -> TriMesh {
+        unsafe fn arr<T: Copy>(p: *const T, n: usize) -> Vec<T> {
+            if n == 0 {
+                assert!(p.is_null(), "an empty array must be lent as NULL");
+                Vec::new()
+            } else {
+                unsafe { std::slice::from_raw_parts(p, n) }.to_vec()
+            }
+        }
+        let mut out = TriMesh::default();
+        unsafe {
+            let (mut nv, mut nt, mut ns) = (0usize, 0usize, 0usize);
+            assert_eq!(idm_mesher2d_counts(m.0, &mut nv, &mut nt, &mut ns), IDM_OK);
+            let mut n = 0usize;
+            let mut pf: *const f64 = std::ptr::null();
+            let mut pu: *const u32 = std::ptr::null();
+            let mut pi: *const i32 = std::ptr::null();
+            assert_eq!(idm_mesher2d_vertices(m.0, &mut pf, &mut n), IDM_OK);
+            assert_eq!(n, nv);
+            out.vertices = arr(pf, 2 * n)
+                .chunks_exact(2)
+                .map(|c| [c[0], c[1]])
+                .collect();
+            assert_eq!(idm_mesher2d_vertex_markers(m.0, &mut pi, &mut n), IDM_OK);
+            assert_eq!(n, nv);
+            out.vertex_markers = arr(pi, n);
+            assert_eq!(idm_mesher2d_triangles(m.0, &mut pu, &mut n), IDM_OK);
+            assert_eq!(n, nt);
+            out.triangles = arr(pu, 3 * n)
+                .chunks_exact(3)
+                .map(|c| [c[0], c[1], c[2]])
+                .collect();
+            assert_eq!(idm_mesher2d_neighbors(m.0, &mut pu, &mut n), IDM_OK);
+            assert_eq!(n, nt);
+            out.neighbors = arr(pu, 3 * n)
+                .chunks_exact(3)
+                .map(|c| [c[0], c[1], c[2]])
+                .collect();
+            assert_eq!(
+                idm_mesher2d_triangle_attributes(m.0, &mut pf, &mut n),
+                IDM_OK
+            );
+            out.triangle_attributes = arr(pf, n);
+            assert_eq!(idm_mesher2d_segments(m.0, &mut pu, &mut pi, &mut n), IDM_OK);
+            assert_eq!(n, ns);
+            out.segments = arr(pu, 2 * n)
+                .chunks_exact(2)
+                .map(|c| [c[0], c[1]])
+                .collect();
+            out.segment_markers = arr(pi, n);
+        }
+        out
+    }
+
+    #[test]
+    fn null_handle_is_reported_with_its_name() {
+        let xy = [0.0; 6];
+        let st = unsafe {
+            idm_mesher2d_add_points(std::ptr::null_mut(), xy.as_ptr(), 3, std::ptr::null())
+        };
+        assert_eq!(st, IDM_ERR_NULL_POINTER);
+        assert!(last_error().contains("`m`"), "{}", last_error());
+        assert_eq!(
+            unsafe { idm_mesher2d_refine(std::ptr::null_mut()) },
+            IDM_ERR_NULL_POINTER
+        );
+        assert_eq!(
+            unsafe { idm_mesher2d_validate(std::ptr::null()) },
+            IDM_ERR_NULL_POINTER
+        );
+        assert_eq!(
+            unsafe { idm_mesher2d_new(std::ptr::null_mut()) },
+            IDM_ERR_NULL_POINTER
+        );
+        assert!(last_error().contains("`out`"), "{}", last_error());
+    }
+
+    #[test]
+    fn null_array_is_an_error_unless_the_count_is_zero() {
+        let m = Handle::new();
+        let st = unsafe { idm_mesher2d_add_points(m.0, std::ptr::null(), 3, std::ptr::null()) };
+        assert_eq!(st, IDM_ERR_NULL_POINTER);
+        assert!(last_error().contains("`xy`"), "{}", last_error());
+        let st = unsafe { idm_mesher2d_add_segments(m.0, std::ptr::null(), 0, std::ptr::null()) };
+        assert_eq!(st, IDM_OK);
+        let xy = [0.0; 4];
+        let attr = [1.0; 2];
+        let st = unsafe {
+            idm_mesher2d_add_regions(m.0, xy.as_ptr(), std::ptr::null(), attr.as_ptr(), 2)
+        };
+        assert_eq!(st, IDM_ERR_NULL_POINTER);
+        assert!(last_error().contains("`attributes`"), "{}", last_error());
+        // The failed calls left the handle unchanged.
+        let h = unsafe { &*m.0 };
+        assert!(h.pslg.points.is_empty() && h.pslg.regions.is_empty());
+    }
+
+    #[test]
+    fn overflowing_counts_are_rejected_before_any_read() {
+        let m = Handle::new();
+        // The pointer is valid for one pair only: the checks must fail before reading.
+        let xy = [0.0; 2];
+        for count in [usize::MAX, usize::MAX / 2 + 1, usize::MAX / 4] {
+            let st = unsafe { idm_mesher2d_add_points(m.0, xy.as_ptr(), count, std::ptr::null()) };
+            assert_eq!(st, IDM_ERR_INVALID_ARGUMENT, "count {count}");
+            assert!(last_error().contains("too large"), "{}", last_error());
+        }
+        let ab = [0u32; 2];
+        let st =
+            unsafe { idm_mesher2d_add_segments(m.0, ab.as_ptr(), usize::MAX, std::ptr::null()) };
+        assert_eq!(st, IDM_ERR_INVALID_ARGUMENT);
+        assert!(unsafe { &*m.0 }.pslg.points.is_empty());
+    }
+
+    #[test]
+    fn misaligned_input_is_rejected() {
+        let m = Handle::new();
+        let buf = [0.0f64; 8];
+        let bad = unsafe { buf.as_ptr().cast::<u8>().add(1) }.cast::<f64>();
+        let st = unsafe { idm_mesher2d_add_points(m.0, bad, 3, std::ptr::null()) };
+        assert_eq!(st, IDM_ERR_INVALID_ARGUMENT);
+        assert!(last_error().contains("aligned"), "{}", last_error());
+    }
+
+    #[test]
+    fn free_null_is_a_no_op_and_default_null_too() {
+        unsafe {
+            idm_mesher2d_free(std::ptr::null_mut());
+            idm_options2d_default(std::ptr::null_mut());
+        }
+    }
+
+    #[test]
+    fn getters_before_refine_report_no_mesh() {
+        let m = Handle::new();
+        load(&m, &square_with_hole());
+        let mut n = 7usize;
+        let mut p: *const f64 = std::ptr::null();
+        let mut pu: *const u32 = std::ptr::null();
+        let mut pi: *const i32 = std::ptr::null();
+        unsafe {
+            assert_eq!(idm_mesher2d_vertices(m.0, &mut p, &mut n), IDM_ERR_NO_MESH);
+            assert!(last_error().contains("refine"), "{}", last_error());
+            assert_eq!(
+                idm_mesher2d_vertex_markers(m.0, &mut pi, &mut n),
+                IDM_ERR_NO_MESH
+            );
+            assert_eq!(
+                idm_mesher2d_triangles(m.0, &mut pu, &mut n),
+                IDM_ERR_NO_MESH
+            );
+            assert_eq!(
+                idm_mesher2d_neighbors(m.0, &mut pu, &mut n),
+                IDM_ERR_NO_MESH
+            );
+            assert_eq!(
+                idm_mesher2d_triangle_attributes(m.0, &mut p, &mut n),
+                IDM_ERR_NO_MESH
+            );
+            assert_eq!(
+                idm_mesher2d_segments(m.0, &mut pu, &mut pi, &mut n),
+                IDM_ERR_NO_MESH
+            );
+            assert_eq!(
+                idm_mesher2d_counts(m.0, &mut n, std::ptr::null_mut(), std::ptr::null_mut()),
+                IDM_ERR_NO_MESH
+            );
+            assert_eq!(idm_mesher2d_validate(m.0), IDM_ERR_NO_MESH);
+        }
+        // Out-parameters are untouched on failure.
+        assert_eq!(n, 7);
+        assert!(p.is_null() && pu.is_null() && pi.is_null());
+    }
+
+    #[test]
+    fn last_error_is_cleared_on_success_and_thread_local() {
+        let m = Handle::new();
+        let st = unsafe { idm_mesher2d_add_holes(m.0, std::ptr::null(), 1) };
+        assert_eq!(st, IDM_ERR_NULL_POINTER);
+        assert!(!last_error().is_empty());
+        // Another thread has its own (empty) message.
+        let other = std::thread::spawn(last_error).join().unwrap();
+        assert_eq!(other, "");
+        assert!(!last_error().is_empty());
+        let hole = [1.0, 1.0];
+        assert_eq!(
+            unsafe { idm_mesher2d_add_holes(m.0, hole.as_ptr(), 1) },
+            IDM_OK
+        );
+        assert_eq!(last_error(), "");
+    }
+
+    #[test]
+    fn panics_become_internal_errors() {
+        let st = guard(|| panic!("boom {}", 42));
+        assert_eq!(st, IDM_ERR_INTERNAL);
+        let msg = last_error();
+        assert!(msg.contains("boom 42") && msg.contains("internal"), "{msg}");
+        let st = guard(|| std::panic::panic_any(3u8));
+        assert_eq!(st, IDM_ERR_INTERNAL);
+        assert!(last_error().contains("panic"), "{}", last_error());
+    }
+
+    #[test]
+    fn default_options_match_the_rust_defaults() {
+        let o = options(0.0, 0.0);
+        let d = Options::default();
+        assert_eq!(o.min_angle, d.min_angle.unwrap_or(0.0));
+        assert_eq!(o.max_area, d.max_area.unwrap_or(0.0));
+        assert_eq!(o.off_centers != 0, d.off_centers);
+        assert_eq!(o.convex_hull != 0, d.convex_hull);
+        assert_eq!(o.split_crossings != 0, d.split_crossings);
+        assert_eq!(o.region_attributes != 0, d.region_attributes);
+        assert_eq!(o.region_max_area != 0, d.region_max_area);
+        assert_eq!(o.no_boundary_steiner != 0, d.no_boundary_steiner);
+        assert_eq!(o.max_steiner < 0, d.max_steiner.is_none());
+        // The documented values of the header.
+        assert_eq!((o.off_centers, o.max_steiner), (1, -1));
+    }
+
+    #[test]
+    fn options_are_translated_and_nan_rejected() {
+        let m = Handle::new();
+        let mut o = options(25.0, -1.0);
+        o.region_attributes = 7;
+        o.max_steiner = 100;
+        assert_eq!(unsafe { idm_mesher2d_set_options(m.0, &o) }, IDM_OK);
+        let h = unsafe { &*m.0 };
+        assert_eq!(h.opts.min_angle, Some(25.0));
+        assert_eq!(h.opts.max_area, None);
+        assert!(h.opts.region_attributes);
+        assert_eq!(h.opts.max_steiner, Some(100));
+        o.max_area = f64::NAN;
+        assert_eq!(
+            unsafe { idm_mesher2d_set_options(m.0, &o) },
+            IDM_ERR_INVALID_ARGUMENT
+        );
+        assert!(last_error().contains("max_area"), "{}", last_error());
+        assert_eq!(
+            unsafe { &*m.0 }.opts.max_steiner,
+            Some(100),
+            "handle unchanged"
+        );
+        assert_eq!(
+            unsafe { idm_mesher2d_set_options(m.0, std::ptr::null()) },
+            IDM_ERR_NULL_POINTER
+        );
+        assert!(last_error().contains("`opts`"), "{}", last_error());
+    }
+
+    #[test]
+    fn markers_default_per_call() {
+        let m = Handle::new();
+        let xy = [0.0, 0.0, 1.0, 0.0, 0.0, 1.0];
+        let mk = [5, 6];
+        let ab = [0u32, 1, 1, 2, 2, 0];
+        unsafe {
+            assert_eq!(
+                idm_mesher2d_add_points(m.0, xy.as_ptr(), 1, std::ptr::null()),
+                IDM_OK
+            );
+            assert_eq!(
+                idm_mesher2d_add_points(m.0, xy[2..].as_ptr(), 2, mk.as_ptr()),
+                IDM_OK
+            );
+            assert_eq!(
+                idm_mesher2d_add_segments(m.0, ab.as_ptr(), 2, mk.as_ptr()),
+                IDM_OK
+            );
+            assert_eq!(
+                idm_mesher2d_add_segments(m.0, ab[4..].as_ptr(), 1, std::ptr::null()),
+                IDM_OK
+            );
+        }
+        let h = unsafe { &*m.0 };
+        assert_eq!(h.pslg.points, vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
+        assert_eq!(h.pslg.point_markers, vec![0, 5, 6]);
+        assert_eq!(h.pslg.segments, vec![[0, 1], [1, 2], [2, 0]]);
+        assert_eq!(h.pslg.segment_markers, vec![5, 6, 1]);
+    }
+
+    #[test]
+    fn regions_translate_area_bounds() {
+        let m = Handle::new();
+        let xy = [1.0, 1.0, 2.0, 2.0, 3.0, 3.0];
+        let attr = [7.0, 8.0, 9.0];
+        let areas = [0.5, 0.0, -3.0];
+        unsafe {
+            assert_eq!(
+                idm_mesher2d_add_regions(m.0, xy.as_ptr(), attr.as_ptr(), areas.as_ptr(), 3),
+                IDM_OK
+            );
+            assert_eq!(
+                idm_mesher2d_add_regions(m.0, xy.as_ptr(), attr.as_ptr(), std::ptr::null(), 1),
+                IDM_OK
+            );
+        }
+        let r = &unsafe { &*m.0 }.pslg.regions;
+        assert_eq!(r.len(), 4);
+        assert_eq!(r[0].point, [1.0, 1.0]);
+        assert_eq!(r[0].max_area, Some(0.5));
+        assert_eq!(
+            (r[1].max_area, r[2].max_area, r[3].max_area),
+            (None, None, None)
+        );
+        assert_eq!(r[2].attribute, 9.0);
+        let nan = [f64::NAN];
+        let st =
+            unsafe { idm_mesher2d_add_regions(m.0, xy.as_ptr(), attr.as_ptr(), nan.as_ptr(), 1) };
+        assert_eq!(st, IDM_ERR_INVALID_ARGUMENT);
+        assert!(last_error().contains("region 4"), "{}", last_error());
+    }
+
+    #[test]
+    fn version_is_the_crate_version() {
+        let v = unsafe { CStr::from_ptr(idm_version()) };
+        assert_eq!(v.to_str().unwrap(), env!("CARGO_PKG_VERSION"));
+    }
+
+    #[test]
+    fn none_constant_matches_the_rust_one() {
+        assert_eq!(IDM_NONE, NONE);
+    }
+
+    #[test]
+    fn handle_is_send() {
+        fn assert_send<T: Send>() {}
+        assert_send::<idm_mesher2d>();
+    }
+
+    // The tests below need the mesher itself (`triangulate`).
+
+    #[test]
+    fn refine_gives_the_rust_result() {
+        let p = square_with_hole();
+        let m = Handle::new();
+        load(&m, &p);
+        let o = options(25.0, 1.0);
+        assert_eq!(unsafe { idm_mesher2d_set_options(m.0, &o) }, IDM_OK);
+        assert_eq!(
+            unsafe { idm_mesher2d_refine(m.0) },
+            IDM_OK,
+            "{}",
+            last_error()
+        );
+        assert_eq!(last_error(), "");
+        assert_eq!(
+            unsafe { idm_mesher2d_validate(m.0) },
+            IDM_OK,
+            "{}",
+            last_error()
+        );
+        let got = read_back(&m);
+        let opts = Options {
+            min_angle: Some(25.0),
+            max_area: Some(1.0),
+            ..Options::default()
+        };
+        let want = triangulate(&p, &opts).unwrap();
+        assert!(want.triangles.len() > 10);
+        assert_eq!(got.vertices, want.vertices);
+        assert_eq!(got.vertex_markers, want.vertex_markers);
+        assert_eq!(got.triangles, want.triangles);
+        assert_eq!(got.neighbors, want.neighbors);
+        assert_eq!(got.segments, want.segments);
+        assert_eq!(got.segment_markers, want.segment_markers);
+        assert!(got.triangle_attributes.is_empty());
+        // Only the counts wanted.
+        let mut nt = 0usize;
+        let st = unsafe {
+            idm_mesher2d_counts(m.0, std::ptr::null_mut(), &mut nt, std::ptr::null_mut())
+        };
+        assert_eq!((st, nt), (IDM_OK, want.triangles.len()));
+        // Changing the input drops the mesh.
+        let xy = [20.0, 20.0];
+        assert_eq!(
+            unsafe { idm_mesher2d_add_points(m.0, xy.as_ptr(), 1, std::ptr::null()) },
+            IDM_OK
+        );
+        assert_eq!(unsafe { idm_mesher2d_validate(m.0) }, IDM_ERR_NO_MESH);
+    }
+
+    #[test]
+    fn invalid_input_names_the_item_and_leaves_no_mesh() {
+        let mut p = square_with_hole();
+        let m = Handle::new();
+        load(&m, &p);
+        assert_eq!(
+            unsafe { idm_mesher2d_refine(m.0) },
+            IDM_OK,
+            "{}",
+            last_error()
+        );
+        let bad = [3u32, 17];
+        assert_eq!(
+            unsafe { idm_mesher2d_add_segments(m.0, bad.as_ptr(), 1, std::ptr::null()) },
+            IDM_OK
+        );
+        assert_eq!(unsafe { idm_mesher2d_refine(m.0) }, IDM_ERR_INVALID_INPUT);
+        let msg = last_error();
+        assert!(msg.contains("segment 8") && msg.contains("17"), "{msg}");
+        p.segments.push([3, 17]);
+        p.segment_markers.push(1);
+        let want = triangulate(&p, &Options::default())
+            .unwrap_err()
+            .to_string();
+        assert_eq!(msg, want);
+        assert_eq!(unsafe { idm_mesher2d_validate(m.0) }, IDM_ERR_NO_MESH);
+    }
+
+    #[test]
+    fn unsupported_option_is_reported() {
+        let m = Handle::new();
+        load(&m, &square_with_hole());
+        let mut o = options(0.0, 0.0);
+        o.no_boundary_steiner = 1;
+        assert_eq!(unsafe { idm_mesher2d_set_options(m.0, &o) }, IDM_OK);
+        assert_eq!(unsafe { idm_mesher2d_refine(m.0) }, IDM_ERR_UNSUPPORTED);
+        assert!(!last_error().is_empty());
+    }
+
+    #[test]
+    fn steiner_cap_gives_a_readable_incomplete_mesh() {
+        let m = Handle::new();
+        load(&m, &square_with_hole());
+        let mut o = options(30.0, 0.01);
+        o.max_steiner = 3;
+        assert_eq!(unsafe { idm_mesher2d_set_options(m.0, &o) }, IDM_OK);
+        assert_eq!(
+            unsafe { idm_mesher2d_refine(m.0) },
+            IDM_INCOMPLETE,
+            "{}",
+            last_error()
+        );
+        assert!(last_error().contains("Steiner"), "{}", last_error());
+        assert_eq!(
+            unsafe { idm_mesher2d_validate(m.0) },
+            IDM_OK,
+            "{}",
+            last_error()
+        );
+        let got = read_back(&m);
+        assert!(!got.triangles.is_empty());
+        let opts = Options {
+            min_angle: Some(30.0),
+            max_area: Some(0.01),
+            max_steiner: Some(3),
+            ..Options::default()
+        };
+        let want = triangulate(&square_with_hole(), &opts).unwrap();
+        assert!(!want.complete);
+        assert_eq!(
+            (&got.vertices, &got.triangles),
+            (&want.vertices, &want.triangles)
+        );
+        // The cap bounds refinement only approximately (a split cascade may finish), but far
+        // below the uncapped mesh.
+        let uncapped = Options {
+            max_steiner: None,
+            ..opts
+        };
+        let full = triangulate(&square_with_hole(), &uncapped).unwrap();
+        assert!(want.triangles.len() * 10 < full.triangles.len());
+    }
+
+    /// A C-style sizing test: too large when the area exceeds `*user` (a `[f64; 1]` bound
+    /// followed by nothing else); counts its calls in a global so the test can see them.
+    static SIZING_CALLS: AtomicUsize = AtomicUsize::new(0);
+
+    unsafe extern "C" fn too_large(
+        user: *mut c_void,
+        a: *const f64,
+        b: *const f64,
+        c: *const f64,
+        area: f64,
+    ) -> i32 {
+        SIZING_CALLS.fetch_add(1, Ordering::Relaxed);
+        let bound = unsafe { *user.cast::<f64>() };
+        // Only triangles touching the left half are constrained.
+        let left = unsafe { *a < 5.0 || *b < 5.0 || *c < 5.0 };
+        i32::from(left && area > bound)
+    }
+
+    #[test]
+    fn c_sizing_callback_is_called_and_obeyed() {
+        let m = Handle::new();
+        load(&m, &square_with_hole());
+        let mut bound = 0.25f64;
+        let user = (&mut bound as *mut f64).cast::<c_void>();
+        assert_eq!(
+            unsafe { idm_mesher2d_set_sizing(m.0, Some(too_large), user) },
+            IDM_OK
+        );
+        let before = SIZING_CALLS.load(Ordering::Relaxed);
+        assert_eq!(
+            unsafe { idm_mesher2d_refine(m.0) },
+            IDM_OK,
+            "{}",
+            last_error()
+        );
+        assert!(
+            SIZING_CALLS.load(Ordering::Relaxed) > before,
+            "callback never called"
+        );
+        let mesh = read_back(&m);
+        let area = |t: &[u32; 3]| {
+            let [a, b, c] = t.map(|i| mesh.vertices[i as usize]);
+            0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+        };
+        let left_max = mesh
+            .triangles
+            .iter()
+            .filter(|t| t.iter().any(|&i| mesh.vertices[i as usize][0] < 5.0))
+            .map(area)
+            .fold(0.0, f64::max);
+        assert!(
+            left_max <= 0.25 * (1.0 + 1e-12),
+            "left triangle of area {left_max}"
+        );
+        // Clearing the callback gives the unconstrained (coarser) mesh.
+        let fine = mesh.triangles.len();
+        assert_eq!(unsafe { idm_mesher2d_set_sizing(m.0, None, user) }, IDM_OK);
+        assert_eq!(
+            unsafe { idm_mesher2d_refine(m.0) },
+            IDM_OK,
+            "{}",
+            last_error()
+        );
+        assert!(read_back(&m).triangles.len() < fine);
+    }
+
+    #[test]
+    fn panicking_sizing_path_cannot_escape() {
+        let m = Handle::new();
+        load(&m, &square_with_hole());
+        // Rust-side sizing closures can panic (an `extern "C"` callback cannot unwind at all):
+        // install one directly and check the panic turns into a status.
+        unsafe { &mut *m.0 }.opts.sizing = Some(Arc::new(|_, _, _, _| panic!("sizing exploded")));
+        assert_eq!(unsafe { idm_mesher2d_refine(m.0) }, IDM_ERR_INTERNAL);
+        assert!(last_error().contains("sizing exploded"), "{}", last_error());
+        assert_eq!(unsafe { idm_mesher2d_validate(m.0) }, IDM_ERR_NO_MESH);
+        // The handle is still usable afterwards.
+        assert_eq!(
+            unsafe { idm_mesher2d_set_sizing(m.0, None, std::ptr::null_mut()) },
+            IDM_OK
+        );
+        assert_eq!(
+            unsafe { idm_mesher2d_refine(m.0) },
+            IDM_OK,
+            "{}",
+            last_error()
+        );
+    }
+
+    #[test]
+    fn region_attributes_come_through() {
+        let m = Handle::new();
+        load(&m, &square_with_hole());
+        let seed = [1.0, 1.0];
+        let attr = [7.5];
+        assert_eq!(
+            unsafe {
+                idm_mesher2d_add_regions(m.0, seed.as_ptr(), attr.as_ptr(), std::ptr::null(), 1)
+            },
+            IDM_OK
+        );
+        let mut o = options(0.0, 0.0);
+        o.region_attributes = 1;
+        assert_eq!(unsafe { idm_mesher2d_set_options(m.0, &o) }, IDM_OK);
+        assert_eq!(
+            unsafe { idm_mesher2d_refine(m.0) },
+            IDM_OK,
+            "{}",
+            last_error()
+        );
+        let mesh = read_back(&m);
+        assert_eq!(mesh.triangle_attributes.len(), mesh.triangles.len());
+        assert!(mesh.triangle_attributes.iter().all(|&a| a == 7.5));
+    }
+}

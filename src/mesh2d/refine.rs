@@ -1,7 +1,8 @@
 //! Segment splitting (the paper's queue `P` of Force'd points, Fig. 2 steps 6–8) and the
 //! elimination of skinny and oversized triangles (`rm-tri`, Fig. 4).
 
-use std::collections::VecDeque;
+use std::cmp::Reverse;
+use std::collections::{BinaryHeap, VecDeque};
 
 use super::build::{segment_marker, Piece};
 use super::store::{Cdt, Inserted, Mode, Seg, SegId, Start, TriId, EXTERIOR, HOLE, NO_REGION};
@@ -27,7 +28,12 @@ pub(super) struct Refiner<'a> {
     off_k: Option<f64>,
     max_area: f64,
     region_area: Vec<f64>,
-    queue: VecDeque<(TriId, [u32; 3])>,
+    /// Bad triangles, smallest angle first (as Triangle does): keyed by the bits of sin² of
+    /// the smallest angle, which order like the non-negative floats they encode.
+    queue: BinaryHeap<Reverse<(u64, TriId, [u32; 3])>>,
+    /// Triangles that are bad only by size, first in first out (cheap, cache-friendly); the
+    /// skinny queue goes first, so quality cascades settle before the mesh grows further.
+    size_queue: VecDeque<(TriId, [u32; 3])>,
     refining: bool,
 }
 
@@ -64,7 +70,8 @@ impl<'a> Refiner<'a> {
             off_k,
             max_area: opts.max_area.unwrap_or(f64::INFINITY),
             region_area,
-            queue: VecDeque::new(),
+            queue: BinaryHeap::new(),
+            size_queue: VecDeque::new(),
             refining: false,
         }
     }
@@ -191,9 +198,27 @@ impl<'a> Refiner<'a> {
         for k in 0..self.cdt.new_tris.len() {
             let t = self.cdt.new_tris[k];
             if self.is_bad(t) {
-                self.queue.push_back((t, self.cdt.tv[t as usize]));
+                self.push_bad(t);
             }
         }
+    }
+
+    fn push_bad(&mut self, t: TriId) {
+        let v = self.cdt.tv[t as usize];
+        let [a, b, c] = v.map(|x| self.cdt.pts[x as usize]);
+        let s2 = min_angle_sin2(a, b, c).max(0.0);
+        if s2 < self.sin2_min {
+            self.queue.push(Reverse((s2.to_bits(), t, v)));
+        } else {
+            self.size_queue.push_back((t, v));
+        }
+    }
+
+    fn pop_bad(&mut self) -> Option<(TriId, [u32; 3])> {
+        if let Some(x) = self.size_queue.pop_front() {
+            return Some(x);
+        }
+        self.queue.pop().map(|Reverse((_, t, v))| (t, v))
     }
 
     /// Whether triangle `t` must be split: too large (global, regional or user bound) or
@@ -284,13 +309,13 @@ impl<'a> Refiner<'a> {
         self.refining = true;
         for t in 0..self.cdt.num_slots() as TriId {
             if self.cdt.alive(t) && self.is_bad(t) {
-                self.queue.push_back((t, self.cdt.tv[t as usize]));
+                self.push_bad(t);
             }
         }
         let base = self.n_input + 1;
         let cap = o.max_steiner.unwrap_or(u64::MAX);
         let mut last_report = 0usize;
-        while let Some((t, vs)) = self.queue.pop_front() {
+        while let Some((t, vs)) = self.pop_bad() {
             if !self.cdt.alive(t) || self.cdt.tv[t as usize] != vs {
                 continue;
             }
@@ -319,7 +344,7 @@ impl<'a> Refiner<'a> {
                     self.cdt.queue_split(s);
                     self.drain_splits()?;
                     if self.cdt.alive(t) && self.cdt.tv[t as usize] == vs {
-                        self.queue.push_back((t, vs));
+                        self.push_bad(t);
                     }
                 }
                 // The point coincides with a vertex or sits on a segment only through rounding

@@ -485,7 +485,14 @@ impl Cdt {
                     self.boundary.push(h);
                     continue;
                 }
-                if st != outside && self.conflict(n, p) {
+                // Visibility: cross an edge only when `p` sees it from the cavity side (or lies
+                // on its line). Without walls this loses no cavity triangle (the cavity is
+                // star-shaped from `p`); with walls it stops the cavity from wrapping around a
+                // vertex into triangles hidden behind a segment.
+                let (a, b) = self.edge_ends(h);
+                let visible =
+                    a == self.ghost || b == self.ghost || orient2d(self.p(a), self.p(b), p) >= 0.0;
+                if st != outside && visible && self.conflict(n, p) {
                     self.stamp[n as usize] = inside;
                     self.cavity.push(n);
                 } else {

@@ -174,7 +174,11 @@ fn four_points() {
 #[test]
 fn eight_points() {
     let p = square_with_hole();
-    let p = Pslg { segments: vec![], holes: vec![], ..p };
+    let p = Pslg {
+        segments: vec![],
+        holes: vec![],
+        ..p
+    };
     let m = triangulate(&p, &Options::default()).unwrap();
     assert_ok(&m, 1.0);
 }

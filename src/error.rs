@@ -15,7 +15,11 @@ pub enum InputError {
     /// All points lie on one line, so there is no triangle to make.
     AllCollinear,
     /// A segment refers to a point index that does not exist.
-    SegmentIndexOutOfRange { segment: usize, index: u64, num_points: usize },
+    SegmentIndexOutOfRange {
+        segment: usize,
+        index: u64,
+        num_points: usize,
+    },
     /// A segment joins a point to itself (or to a point with the same coordinates).
     ZeroLengthSegment { segment: usize },
     /// Two segments join the same pair of points.
@@ -31,7 +35,11 @@ pub enum InputError {
     /// A region seed lies outside the meshed domain (or on a segment).
     RegionOutsideDomain { region: usize },
     /// The marker array does not have one entry per item.
-    MarkerCountMismatch { what: &'static str, expected: usize, got: usize },
+    MarkerCountMismatch {
+        what: &'static str,
+        expected: usize,
+        got: usize,
+    },
     /// A coordinate is so large that circumcenters would overflow.
     CoordinateTooLarge { point: usize },
 }
@@ -59,7 +67,11 @@ impl fmt::Display for InputError {
                 write!(f, "points {first} and {second} have identical coordinates")
             }
             AllCollinear => write!(f, "all points are collinear"),
-            SegmentIndexOutOfRange { segment, index, num_points } => write!(
+            SegmentIndexOutOfRange {
+                segment,
+                index,
+                num_points,
+            } => write!(
                 f,
                 "segment {segment} refers to point {index}, but there are only {num_points} points"
             ),
@@ -68,23 +80,36 @@ impl fmt::Display for InputError {
                 write!(f, "segments {first} and {second} join the same two points")
             }
             CrossingSegments { first, second } => {
-                write!(f, "segments {first} and {second} intersect other than at a shared endpoint")
+                write!(
+                    f,
+                    "segments {first} and {second} intersect other than at a shared endpoint"
+                )
             }
             NonFiniteHole { hole } => write!(f, "hole {hole} has a NaN or infinite coordinate"),
             HoleOutsideDomain { hole } => {
                 write!(f, "hole {hole} lies outside the domain or on a segment")
             }
             NonFiniteRegion { region } => {
-                write!(f, "region {region} has a NaN or infinite coordinate or attribute")
+                write!(
+                    f,
+                    "region {region} has a NaN or infinite coordinate or attribute"
+                )
             }
             RegionOutsideDomain { region } => {
                 write!(f, "region {region} lies outside the domain or on a segment")
             }
-            MarkerCountMismatch { what, expected, got } => {
+            MarkerCountMismatch {
+                what,
+                expected,
+                got,
+            } => {
                 write!(f, "{what} markers: expected {expected} entries, got {got}")
             }
             CoordinateTooLarge { point } => {
-                write!(f, "point {point} has a coordinate too large to mesh safely (|x| > 1e150)")
+                write!(
+                    f,
+                    "point {point} has a coordinate too large to mesh safely (|x| > 1e150)"
+                )
             }
         }
     }

@@ -42,7 +42,10 @@ impl Default for Expansion {
 impl Expansion {
     /// The empty sum (zero).
     pub fn new() -> Self {
-        Expansion { terms: [0.0; 64], len: 0 }
+        Expansion {
+            terms: [0.0; 64],
+            len: 0,
+        }
     }
 
     /// Adds one double exactly (Shewchuk's Grow-Expansion, zero elimination).

@@ -76,7 +76,12 @@ pub fn min_angle_sin2(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
 /// `Some(k)`, the off-center of Üngör: the point on the bisector of the shortest edge at
 /// distance `k · |shortest edge|` from the edge's midpoint, if that is closer than the
 /// circumcenter (`k = 0.475 · cot(θ/2)` for a minimum angle θ, as in Triangle).
-pub fn steiner_point(a: [f64; 2], b: [f64; 2], c: [f64; 2], off_center: Option<f64>) -> Option<[f64; 2]> {
+pub fn steiner_point(
+    a: [f64; 2],
+    b: [f64; 2],
+    c: [f64; 2],
+    off_center: Option<f64>,
+) -> Option<[f64; 2]> {
     let cc = circumcenter(a, b, c)?;
     let Some(k) = off_center else { return Some(cc) };
     let ab = dist2(a, b);

@@ -13,7 +13,11 @@ fn c2(p: [f64; 2]) -> Coord<f64> {
 
 #[inline]
 fn c3(p: [f64; 3]) -> Coord3D<f64> {
-    Coord3D { x: p[0], y: p[1], z: p[2] }
+    Coord3D {
+        x: p[0],
+        y: p[1],
+        z: p[2],
+    }
 }
 
 /// Positive when `a, b, c` are counter-clockwise, negative when clockwise, zero when collinear.
@@ -69,7 +73,14 @@ mod tests {
         assert!(orient2d([0.0, 0.0], [0.0, 1.0], [1.0, 0.0]) < 0.0);
         assert_eq!(orient2d([0.0, 0.0], [1.0, 1.0], [3.0, 3.0]), 0.0);
         // Shewchuk's convention: positive when d is below the ccw plane abc.
-        assert!(orient3d([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -1.0]) > 0.0);
+        assert!(
+            orient3d(
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 0.0, -1.0]
+            ) > 0.0
+        );
     }
 
     #[test]

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# The whole test suite, runnable on a fresh machine (the README's second command).
+# Installs what it needs when missing: Debian packages for the C/C++ harness and the
+# reference tools, Python packages for the conformance verifiers.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+need_apt=()
+for pkg in cmake g++ libcgal-dev libgmp-dev libmpfr-dev libtet1.5-dev tetgen python3-pip; do
+  dpkg -s "$pkg" >/dev/null 2>&1 || need_apt+=("$pkg")
+done
+if [ ${#need_apt[@]} -gt 0 ]; then
+  echo "== installing Debian packages: ${need_apt[*]}"
+  SUDO=""; [ "$(id -u)" -ne 0 ] && command -v sudo >/dev/null && SUDO=sudo
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${need_apt[@]}" >/dev/null
+fi
+if ! python3 -c 'import numpy, scipy' >/dev/null 2>&1; then
+  echo "== installing Python packages: numpy scipy"
+  python3 -m pip install -q numpy scipy || python3 -m pip install -q --break-system-packages numpy scipy
+fi
+
+echo "== cargo fmt --check"
+cargo fmt --check
+echo "== cargo clippy"
+cargo clippy --all-targets --quiet -- -D warnings
+echo "== cargo test"
+cargo test --quiet 2>&1 | tee /tmp/idmesh-cargo-test.log | grep -E '^(test result|error|failures|---- )' || true
+if grep -qE '^test result: FAILED|^error' /tmp/idmesh-cargo-test.log; then
+  echo "cargo test failed"; exit 1
+fi
+grep -q '^test result: ok' /tmp/idmesh-cargo-test.log || { echo "cargo test ran no test"; exit 1; }
+echo "== CMake C/C++ harness (CGAL comparison)"
+bash scripts/ctest.sh
+if [ -d ../shared/data/2d ]; then
+  echo "== conformance against ../shared/data/2d"
+  bash conformance/run2d.sh
+else
+  echo "== conformance skipped: ../shared not found"
+fi
+echo "== all tests passed"

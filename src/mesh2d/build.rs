@@ -9,6 +9,9 @@ use crate::error::{Error, InputError};
 use crate::input::Pslg;
 use crate::predicates::{orient2d, strictly_between};
 
+/// The largest accepted minimum-angle bound, in degrees.
+pub const MAX_MIN_ANGLE: f64 = 34.0;
+
 /// Coordinates beyond this magnitude could overflow circumcenter computations.
 const MAX_COORD: f64 = 1e150;
 
@@ -29,10 +32,10 @@ pub(super) fn run(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
 
 fn check_options(o: &Options) -> Result<(), Error> {
     if let Some(a) = o.min_angle {
-        if !(a > 0.0 && a <= 45.0) {
+        if !(a > 0.0 && a <= MAX_MIN_ANGLE) {
             return Err(Error::InvalidOption(format!(
-                "minimum angle {a} must lie in (0, 45] degrees (termination is proven up to 20.7, \
-                 observed up to about 34)"
+                "minimum angle {a} must lie in (0, {MAX_MIN_ANGLE}] degrees (termination is proven \
+                 up to 20.7 and observed up to 35; beyond, refinement can run away)"
             )));
         }
     }
@@ -42,6 +45,11 @@ fn check_options(o: &Options) -> Result<(), Error> {
                 "maximum area {a} must be positive and finite"
             )));
         }
+    }
+    if o.split_crossings {
+        return Err(Error::Unsupported(
+            "resolving crossing segments by their intersection point is not implemented yet".into(),
+        ));
     }
     if o.no_boundary_steiner {
         return Err(Error::Unsupported(
@@ -196,19 +204,16 @@ fn insert_points(cdt: &mut Cdt, points: &[[f64; 2]]) -> Result<(), Error> {
     // The first triangle: the first point, the next distinct one, the first non-collinear one.
     let a = order[0];
     let pa = points[a as usize];
-    let mut b_pos = None;
-    for (k, &i) in order.iter().enumerate().skip(1) {
-        if points[i as usize] != pa {
-            b_pos = Some(k);
-            break;
-        }
+    // The second point in order must differ from the first (input has at least 3 points).
+    let b_pos = 1;
+    let i = order[1];
+    if points[i as usize] == pa {
         return Err(InputError::DuplicatePoint {
             first: a.min(i) as usize,
             second: a.max(i) as usize,
         }
         .into());
     }
-    let b_pos = b_pos.ok_or(InputError::AllCollinear)?;
     let b = order[b_pos];
     let pb = points[b as usize];
     let mut c_pos = None;
@@ -595,6 +600,14 @@ fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> TriMesh {
             if in_domain(h / 3) || in_domain(tw / 3) {
                 segments.push([a, b]);
                 segment_markers.push(s.marker);
+            }
+        }
+    }
+    // As Triangle: a vertex with marker 0 lying on a subsegment takes the subsegment's marker.
+    for (e, &mk) in segments.iter().zip(&segment_markers) {
+        for &v in e {
+            if vertex_markers[v as usize] == 0 {
+                vertex_markers[v as usize] = mk;
             }
         }
     }

@@ -36,8 +36,8 @@ pub type SizingFn = Arc<dyn Fn([f64; 2], [f64; 2], [f64; 2], f64) -> bool + Send
 #[derive(Clone)]
 pub struct Options {
     /// Minimum angle in degrees (Triangle's `-q`). `None`: no angle refinement. Must lie in
-    /// `(0, 34]`; larger bounds may not terminate in theory (Triangle allows the same range with a
-    /// warning above 34). Triangles whose small angle sits between input segments meeting at less
+    /// `(0, 34]`: termination is proven up to 20.7° and observed up to 35°; above that
+    /// refinement can run away (Triangle's too), so larger bounds are refused. Triangles whose small angle sits between input segments meeting at less
     /// than 60° are exempt. Default: `None`.
     pub min_angle: Option<f64>,
     /// Global maximum triangle area (Triangle's `-a<area>`). Default: `None`.
@@ -50,8 +50,10 @@ pub struct Options {
     /// (Triangle's `-c`). Without segments the convex hull is always meshed. Default: `false`.
     pub convex_hull: bool,
     /// Maximum number of Steiner points (Triangle's `-S<n>`). When reached, refinement stops and
-    /// the mesh is returned with [`TriMesh::complete`] set to `false`. Default: `None` (no cap
-    /// other than an internal safety cap of 2^31 vertices).
+    /// the mesh is returned with [`TriMesh::complete`] set to `false`. The cap is checked before
+    /// each skinny or oversized triangle is split; the segment splits that one split triggers
+    /// always finish (so segments stay conforming), which can add a few points beyond the cap.
+    /// Default: `None` (no cap other than an internal safety cap of 2^31 vertices).
     pub max_steiner: Option<u64>,
     /// Forbid Steiner points on boundary segments (Triangle's `-Y`). The result is then
     /// constrained Delaunay, not conforming Delaunay. Not implemented yet: setting it gives
@@ -61,7 +63,8 @@ pub struct Options {
     /// the same angle bound. Default: `true`.
     pub off_centers: bool,
     /// Resolve crossing segments by inserting their intersection point instead of reporting
-    /// [`crate::InputError::CrossingSegments`]. Default: `false`.
+    /// [`crate::InputError::CrossingSegments`]. Not implemented yet: setting it gives
+    /// [`Error::Unsupported`]. Default: `false`.
     pub split_crossings: bool,
     /// A user sizing test (Triangle's `-u`); see [`SizingFn`]. Default: `None`.
     pub sizing: Option<SizingFn>,

@@ -11,7 +11,9 @@ pub struct TriMesh {
     /// Vertex coordinates.
     pub vertices: Vec<[f64; 2]>,
     /// One marker per vertex: the input marker for input vertices (0 when none was given), the
-    /// segment's marker for Steiner vertices on a segment, 0 for interior Steiner vertices.
+    /// segment's marker for Steiner vertices on a segment, 0 for interior Steiner vertices; as in
+    /// Triangle, a vertex whose marker would be 0 but which lies on a subsegment takes the
+    /// subsegment's marker.
     pub vertex_markers: Vec<i32>,
     /// How many leading vertices are input points.
     pub num_input_vertices: usize,

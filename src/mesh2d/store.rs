@@ -453,6 +453,15 @@ impl Cdt {
                     self.stamp[t as usize] = inside;
                     self.cavity.push(t);
                 }
+                // The split point is computed in floating point and may round to just outside
+                // both triangles of the edge (beyond a third, nearly flat one): seed the
+                // triangle that really contains it too, so the cavity is star-shaped from it.
+                if let Ok(t) = self.locate(h / 3, p, false) {
+                    if self.stamp[t as usize] != inside && self.conflict(t, p) {
+                        self.stamp[t as usize] = inside;
+                        self.cavity.push(t);
+                    }
+                }
             }
         }
         let split_twin = if split_half != NONE {

@@ -1,4 +1,5 @@
 //! Unit tests of the 2D core on small inputs; the property tests live in tests/.
+#![allow(clippy::field_reassign_with_default)]
 
 use super::*;
 use crate::input::{Pslg, Region};
@@ -181,4 +182,17 @@ fn eight_points() {
     };
     let m = triangulate(&p, &Options::default()).unwrap();
     assert_ok(&m, 1.0);
+}
+
+#[test]
+fn right_triangle_area_refinement() {
+    let mut p = Pslg::default();
+    p.points = vec![[0.0, 0.0], [2.0, 0.0], [0.0, 2.0]];
+    p.segments = vec![[0, 1], [1, 2], [2, 0]];
+    let opts = Options {
+        max_area: Some(0.1),
+        ..Options::default()
+    };
+    let m = triangulate(&p, &opts).unwrap();
+    assert_ok(&m, 2.0);
 }

@@ -20,12 +20,14 @@ pub(super) fn run(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
     check_input(pslg)?;
     let n = pslg.points.len();
     let mut cdt = Cdt::new(&pslg.points);
+    cdt.inseg_ends = pslg.segments.clone();
     insert_points(&mut cdt, &pslg.points)?;
-    let pieces = segment_pieces(pslg)?;
+    let pieces = segment_pieces(pslg, &mut cdt, opts.split_crossings)?;
     let mut r = Refiner::new(cdt, pslg, opts);
     r.register_segments(&pieces)?;
     r.drain_splits()?;
     classify(&mut r, pslg, opts)?;
+    r.cdt.carve();
     r.refine()?;
     Ok(output(&r, n, pslg, opts))
 }
@@ -45,11 +47,6 @@ fn check_options(o: &Options) -> Result<(), Error> {
                 "maximum area {a} must be positive and finite"
             )));
         }
-    }
-    if o.split_crossings {
-        return Err(Error::Unsupported(
-            "resolving crossing segments by their intersection point is not implemented yet".into(),
-        ));
     }
     if o.no_boundary_steiner {
         return Err(Error::Unsupported(
@@ -264,7 +261,9 @@ pub(super) struct Piece {
 
 /// Checks segments against each other (crossings, overlaps) and against points (a point inside a
 /// segment splits it there), with a uniform grid so typical inputs cost near-linear time.
-fn segment_pieces(p: &Pslg) -> Result<Vec<Piece>, Error> {
+/// With `split_crossings`, two segments that cross are both split at their intersection point
+/// (rounded to floating point, as Triangle does), which is inserted into `cdt`.
+fn segment_pieces(p: &Pslg, cdt: &mut Cdt, split_crossings: bool) -> Result<Vec<Piece>, Error> {
     let m = p.segments.len();
     if m == 0 {
         return Ok(Vec::new());
@@ -317,6 +316,7 @@ fn segment_pieces(p: &Pslg) -> Result<Vec<Piece>, Error> {
         }
     }
     // Segment pairs.
+    let mut crossings: Vec<(usize, usize)> = Vec::new();
     let mut seen = vec![u32::MAX; m];
     for s in 0..m {
         let (x0, x1, y0, y1) = seg_cells(s);
@@ -329,12 +329,16 @@ fn segment_pieces(p: &Pslg) -> Result<Vec<Piece>, Error> {
                         continue;
                     }
                     seen[t] = s as u32;
-                    if segments_conflict(p, s, t) {
-                        return Err(InputError::CrossingSegments {
-                            first: s,
-                            second: t,
+                    match segments_conflict(p, s, t) {
+                        Meeting::Fine => {}
+                        Meeting::Cross if split_crossings => crossings.push((s, t)),
+                        Meeting::Cross | Meeting::Overlap => {
+                            return Err(InputError::CrossingSegments {
+                                first: s,
+                                second: t,
+                            }
+                            .into())
                         }
-                        .into());
                     }
                 }
             }
@@ -357,13 +361,49 @@ fn segment_pieces(p: &Pslg) -> Result<Vec<Piece>, Error> {
             }
         }
     }
+    // Crossing points become new vertices splitting both segments.
+    for &(s, t) in &crossings {
+        let [a, b] = p.segments[s];
+        let [c, d] = p.segments[t];
+        let (pa, pb, pc, pd) = (
+            pts[a as usize],
+            pts[b as usize],
+            pts[c as usize],
+            pts[d as usize],
+        );
+        let e = [pb[0] - pa[0], pb[1] - pa[1]];
+        let f = [pd[0] - pc[0], pd[1] - pc[1]];
+        let den = e[0] * f[1] - e[1] * f[0];
+        let u = ((pc[0] - pa[0]) * f[1] - (pc[1] - pa[1]) * f[0]) / den;
+        let x = [pa[0] + e[0] * u, pa[1] + e[1] * u];
+        let v = match cdt.insert(x, Start::Walk(cdt.hint), Mode::Force, NONE, None) {
+            Inserted::Yes(v) | Inserted::Duplicate(v) => v,
+            other => {
+                return Err(Error::Internal(format!(
+                    "inserting the crossing of segments {s} and {t}: {other:?}"
+                )))
+            }
+        };
+        for (seg, q) in [(s, pa), (t, pc)] {
+            let [r0, r1] = p.segments[seg];
+            let (q0, q1) = (pts[r0 as usize], pts[r1 as usize]);
+            let k = if q0[0] != q1[0] { 0 } else { 1 };
+            on_seg.push((seg as u32, (x[k] - q[k]).abs(), v));
+        }
+    }
     on_seg.sort_by(|x, y| x.0.cmp(&y.0).then(x.1.total_cmp(&y.1)));
+    // A crossing that rounds onto an endpoint or onto another split point adds nothing.
+    on_seg.dedup_by(|x, y| x.0 == y.0 && x.2 == y.2);
     let mut pieces = Vec::with_capacity(m + on_seg.len());
     let mut j = 0;
     for s in 0..m {
         let [a, b] = p.segments[s];
         let mut from = a;
         while j < on_seg.len() && on_seg[j].0 as usize == s {
+            if on_seg[j].2 == from || on_seg[j].2 == b {
+                j += 1;
+                continue;
+            }
             pieces.push(Piece {
                 a: from,
                 b: on_seg[j].2,
@@ -381,9 +421,18 @@ fn segment_pieces(p: &Pslg) -> Result<Vec<Piece>, Error> {
     Ok(pieces)
 }
 
-/// Whether segments `s` and `t` meet other than at a shared endpoint or at an input point
-/// lying on one of them (which splits it and is fine).
-fn segments_conflict(p: &Pslg, s: usize, t: usize) -> bool {
+/// How two input segments meet.
+enum Meeting {
+    /// Disjoint, or sharing an endpoint, or touching at an input point (which splits a segment).
+    Fine,
+    /// Their interiors cross at a single point.
+    Cross,
+    /// They are collinear and overlap, or join the same two points.
+    Overlap,
+}
+
+/// How segments `s` and `t` meet.
+fn segments_conflict(p: &Pslg, s: usize, t: usize) -> Meeting {
     let [a, b] = p.segments[s];
     let [c, d] = p.segments[t];
     let (pa, pb, pc, pd) = (
@@ -394,7 +443,7 @@ fn segments_conflict(p: &Pslg, s: usize, t: usize) -> bool {
     );
     let shared = [a, b].iter().filter(|&&x| x == c || x == d).count();
     if shared == 2 {
-        return true;
+        return Meeting::Overlap;
     }
     let o1 = orient2d(pa, pb, pc);
     let o2 = orient2d(pa, pb, pd);
@@ -403,16 +452,26 @@ fn segments_conflict(p: &Pslg, s: usize, t: usize) -> bool {
         let k = if pa[0] != pb[0] { 0 } else { 1 };
         let (s0, s1) = (pa[k].min(pb[k]), pa[k].max(pb[k]));
         let (t0, t1) = (pc[k].min(pd[k]), pc[k].max(pd[k]));
-        return s0.max(t0) < s1.min(t1);
+        return if s0.max(t0) < s1.min(t1) {
+            Meeting::Overlap
+        } else {
+            Meeting::Fine
+        };
     }
     if shared == 1 {
-        return false;
+        return Meeting::Fine;
     }
     let o3 = orient2d(pc, pd, pa);
     let o4 = orient2d(pc, pd, pb);
     // A proper crossing. Touchings (an endpoint inside the other segment) are handled as points
     // on segments.
-    (o1 > 0.0 && o2 < 0.0 || o1 < 0.0 && o2 > 0.0) && (o3 > 0.0 && o4 < 0.0 || o3 < 0.0 && o4 > 0.0)
+    if (o1 > 0.0 && o2 < 0.0 || o1 < 0.0 && o2 > 0.0)
+        && (o3 > 0.0 && o4 < 0.0 || o3 < 0.0 && o4 > 0.0)
+    {
+        Meeting::Cross
+    } else {
+        Meeting::Fine
+    }
 }
 
 /// Marks exterior, holes and regions by flooding from infinity and from seeds, stopping at
@@ -577,7 +636,13 @@ fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> TriMesh {
         }
         let v = cdt.tv[t as usize];
         triangles.push(v.map(|x| vmap[x as usize]));
-        let nb = cdt.tn[t as usize].map(|h| tmap[(h / 3) as usize]);
+        let nb = cdt.tn[t as usize].map(|h| {
+            if h == NONE {
+                NONE
+            } else {
+                tmap[(h / 3) as usize]
+            }
+        });
         neighbors.push(nb);
         if opts.region_attributes {
             let reg = cdt.treg[t as usize];
@@ -597,7 +662,7 @@ fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> TriMesh {
         }
         if let Some(h) = cdt.find_edge(s.a, s.b) {
             let tw = cdt.twin(h);
-            if in_domain(h / 3) || in_domain(tw / 3) {
+            if in_domain(h / 3) || (tw != NONE && in_domain(tw / 3)) {
                 segments.push([a, b]);
                 segment_markers.push(s.marker);
             }

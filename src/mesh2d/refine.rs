@@ -24,6 +24,9 @@ pub(super) struct Refiner<'a> {
     /// Input vertices shared by two or more segments: segments are split at powers of two from
     /// them (Ruppert's concentric shells), so neighbouring segments split alike.
     apex: Vec<bool>,
+    /// Crossing points (from `split_crossings`) lying on each input segment: like shared
+    /// endpoints, they are corners that segments radiate from.
+    crossing_apexes: std::collections::HashMap<u32, Vec<u32>>,
     sin2_min: f64,
     off_k: Option<f64>,
     max_area: f64,
@@ -66,6 +69,7 @@ impl<'a> Refiner<'a> {
             opts,
             n_input: n,
             apex: degree.iter().map(|&d| d >= 2).collect(),
+            crossing_apexes: std::collections::HashMap::new(),
             sin2_min,
             off_k,
             max_area: opts.max_area.unwrap_or(f64::INFINITY),
@@ -80,6 +84,14 @@ impl<'a> Refiner<'a> {
     /// queued for splitting (paper Fig. 2 step 7 for the input).
     pub fn register_segments(&mut self, pieces: &[Piece]) -> Result<(), Error> {
         for pc in pieces {
+            for v in [pc.a, pc.b] {
+                if v as usize > self.n_input {
+                    let list = self.crossing_apexes.entry(pc.input).or_default();
+                    if !list.contains(&v) {
+                        list.push(v);
+                    }
+                }
+            }
             let s = self.cdt.segs.len() as SegId;
             let marker = segment_marker(self.pslg, pc.input as usize);
             self.cdt.segs.push(Seg {
@@ -111,6 +123,9 @@ impl<'a> Refiner<'a> {
                 }
                 let (pa, pb) = (self.cdt.pts[a as usize], self.cdt.pts[b as usize]);
                 for e in [h, self.cdt.twin(h)] {
+                    if e == NONE {
+                        continue;
+                    }
                     let c = self.cdt.apex(e);
                     if c != self.cdt.ghost && encroaches(pa, pb, self.cdt.pts[c as usize]) {
                         self.cdt.queue_split(s);
@@ -135,7 +150,15 @@ impl<'a> Refiner<'a> {
     fn split_point(&self, a: u32, b: u32) -> [f64; 2] {
         let pa = self.cdt.pts[a as usize];
         let pb = self.cdt.pts[b as usize];
-        let apex = |v: u32| (v as usize) < self.n_input && self.apex[v as usize];
+        // Input vertices shared by segments are apexes; so are crossing points inserted by
+        // `split_crossings`: the only Steiner segment endpoints lying on no single segment.
+        let apex = |v: u32| {
+            if (v as usize) < self.n_input {
+                self.apex[v as usize]
+            } else {
+                self.cdt.vseg[v as usize] == NONE
+            }
+        };
         let (from, to) = match (apex(a), apex(b)) {
             (true, false) => (pa, pb),
             (false, true) => (pb, pa),
@@ -274,11 +297,14 @@ impl<'a> Refiner<'a> {
         if sx == NONE || sy == NONE || sx == sy {
             return false;
         }
-        let e1 = self.pslg.segments[sx as usize];
-        let e2 = self.pslg.segments[sy as usize];
-        for &c in &e1 {
-            if c == e2[0] || c == e2[1] {
-                let pc = self.pslg.points[c as usize];
+        let corners = |s: u32| {
+            let e = self.pslg.segments[s as usize];
+            let extra = self.crossing_apexes.get(&s).map_or(&[][..], |v| &v[..]);
+            e.into_iter().chain(extra.iter().copied())
+        };
+        for c in corners(sx) {
+            if corners(sy).any(|d| d == c) {
+                let pc = self.cdt.pts[c as usize];
                 let d1 = dist2(pc, p[(k + 1) % 3]).sqrt();
                 let d2 = dist2(pc, p[(k + 2) % 3]).sqrt();
                 if d1 < 1.001 * d2 && d2 < 1.001 * d1 {

@@ -108,6 +108,9 @@ pub struct Cdt {
     cavity: Vec<TriId>,
     boundary: Vec<u32>,
     breg: Vec<u32>,
+    bedge: Vec<(VertexId, VertexId, SegId)>,
+    /// Endpoints of each input segment (to recognise points on one input segment).
+    pub inseg_ends: Vec<[VertexId; 2]>,
     vmark: Vec<TriId>,
     /// The last triangle created (a walking hint).
     pub hint: TriId,
@@ -158,6 +161,8 @@ impl Cdt {
             cavity: Vec::new(),
             boundary: Vec::new(),
             breg: Vec::new(),
+            bedge: Vec::new(),
+            inseg_ends: Vec::new(),
             vmark: vec![NONE; n + 1],
             hint: 0,
         }
@@ -274,36 +279,105 @@ impl Cdt {
     pub fn set_seg(&mut self, h: u32, s: SegId) {
         let tw = self.twin(h);
         self.ts[(h / 3) as usize][(h % 3) as usize] = s;
-        self.ts[(tw / 3) as usize][(tw % 3) as usize] = s;
+        if tw != NONE {
+            self.ts[(tw / 3) as usize][(tw % 3) as usize] = s;
+        }
     }
 
-    /// Finds the half-edge from `a` to `b` by turning around `a`; `None` if `ab` is no edge.
+    /// Whether `q` and `r` and a new point on input segment `seg` all lie on input segment
+    /// `seg` by construction. Split points are rounded, so three such points can be flat or
+    /// even turn the wrong way by an ulp; the triangles they make only ever sit in the empty
+    /// exterior or a hole (a near-flat triangle elsewhere has vertices in its circumcircle).
+    fn same_input_segment(&self, seg: u32, q: VertexId, r: VertexId) -> bool {
+        if seg == NONE {
+            return false;
+        }
+        let ends = self.inseg_ends[seg as usize];
+        let on = |v: VertexId| self.vseg[v as usize] == seg || ends.contains(&v);
+        on(q) && on(r)
+    }
+
+    /// Deletes every triangle whose region is [`EXTERIOR`] or [`HOLE`] (Triangle's carving):
+    /// refinement then only ever sees the domain, bounded by segments with no neighbour.
+    pub fn carve(&mut self) {
+        for t in 0..self.tv.len() {
+            if self.tv[t][0] == NONE || !matches!(self.treg[t], EXTERIOR | HOLE) {
+                continue;
+            }
+            for i in 0..3 {
+                let tw = self.tn[t][i];
+                if tw != NONE {
+                    self.tn[(tw / 3) as usize][(tw % 3) as usize] = NONE;
+                }
+            }
+            self.tv[t] = [NONE; 3];
+            self.tn[t] = [NONE; 3];
+            self.free.push(t as TriId);
+        }
+        self.vtri.iter_mut().for_each(|v| *v = NONE);
+        for t in 0..self.tv.len() {
+            for &v in &self.tv[t] {
+                if v != NONE {
+                    self.vtri[v as usize] = t as TriId;
+                    self.hint = t as TriId;
+                }
+            }
+        }
+    }
+
+    /// Finds the half-edge from `a` to `b` (or, when only `b → a` exists on an open boundary,
+    /// that one) by turning around `a` both ways; `None` if `ab` is no edge.
     pub fn find_edge(&self, a: VertexId, b: VertexId) -> Option<u32> {
         let start = self.vtri[a as usize];
         if start == NONE {
             return None;
         }
-        let mut t = start;
-        // Each turn crosses the edge (a, v[k+1]) of the current triangle; the budget guards
-        // against a corrupted fan.
-        for _ in 0..1_000_000 {
+        let corner = |t: TriId| {
             let v = self.tv[t as usize];
-            let k = if v[0] == a {
+            if v[0] == a {
                 0
             } else if v[1] == a {
                 1
             } else {
                 2
-            };
-            if v[next(k)] == b {
-                // Edge a→b is opposite v[k+2].
-                return Some(3 * t + prev(k) as u32);
             }
-            // Cross edge (v[k+2], a) (opposite v[k+1]) to turn clockwise around a.
-            let h = self.tn[t as usize][next(k)];
+        };
+        let hit = |t: TriId| {
+            let k = corner(t);
+            let v = self.tv[t as usize];
+            if v[next(k)] == b {
+                Some(3 * t + prev(k) as u32)
+            } else if v[prev(k)] == b {
+                Some(3 * t + next(k) as u32)
+            } else {
+                None
+            }
+        };
+        // Clockwise: cross edge (v[k+2], a), opposite v[k+1]. The budget guards a corrupted fan.
+        let mut t = start;
+        for _ in 0..1_000_000 {
+            if let Some(h) = hit(t) {
+                return Some(h);
+            }
+            let h = self.tn[t as usize][next(corner(t))];
+            if h == NONE {
+                break;
+            }
             t = h / 3;
             if t == start {
                 return None;
+            }
+        }
+        // Counter-clockwise from the start, for fans cut open by carving.
+        let mut t = start;
+        for _ in 0..1_000_000 {
+            let h = self.tn[t as usize][prev(corner(t))];
+            if h == NONE {
+                return None;
+            }
+            t = h / 3;
+            if let Some(h) = hit(t) {
+                return Some(h);
             }
         }
         None
@@ -362,13 +436,13 @@ impl Cdt {
                 let a = self.p(v[next(i)]);
                 let b = self.p(v[prev(i)]);
                 if orient2d(a, b, p) < 0.0 {
-                    if stop_at_walls {
-                        let s = self.ts[t as usize][i];
-                        if s != NONE {
-                            return Err(Some(s));
-                        }
+                    let s = self.ts[t as usize][i];
+                    let tw = self.tn[t as usize][i];
+                    if (stop_at_walls && s != NONE) || tw == NONE {
+                        // After carving, every open edge is a segment.
+                        return Err((s != NONE).then_some(s));
                     }
-                    t = self.tn[t as usize][i] / 3;
+                    t = tw / 3;
                     moved = true;
                     break;
                 }
@@ -450,6 +524,9 @@ impl Cdt {
                 let tw = self.twin(h);
                 split_half = h;
                 for t in [h / 3, tw / 3] {
+                    if t == NONE / 3 || self.stamp[t as usize] == inside {
+                        continue;
+                    }
                     self.stamp[t as usize] = inside;
                     self.cavity.push(t);
                 }
@@ -476,16 +553,25 @@ impl Cdt {
             k += 1;
             for i in 0..3 {
                 let h = 3 * t + i as u32;
+                if h == split_half || h == split_twin {
+                    // The edge being split is inside the cavity (or, on a carved boundary,
+                    // has no outside): the fan closes over it.
+                    continue;
+                }
                 let tw = self.tn[t as usize][i];
                 let n = tw / 3;
-                let st = self.stamp[n as usize];
+                let st = if tw == NONE {
+                    0
+                } else {
+                    self.stamp[n as usize]
+                };
                 if st == inside {
                     continue;
                 }
                 let s = self.ts[t as usize][i];
-                if s != NONE && h != split_half && h != split_twin {
+                if s != NONE || tw == NONE {
                     let (a, b) = self.edge_ends(h);
-                    if encroaches(self.p(a), self.p(b), p) {
+                    if s != NONE && encroaches(self.p(a), self.p(b), p) {
                         match mode {
                             Mode::Provisional => return Inserted::Encroached(s),
                             Mode::Force => self.queue_split(s),
@@ -514,7 +600,11 @@ impl Cdt {
         // the segment being split) would make a flat one.
         for &h in &self.boundary {
             let (q, r) = self.edge_ends(h);
-            if q != self.ghost && r != self.ghost && orient2d(p, self.p(q), self.p(r)) <= 0.0 {
+            if q != self.ghost
+                && r != self.ghost
+                && orient2d(p, self.p(q), self.p(r)) <= 0.0
+                && !self.same_input_segment(on_input_seg, q, r)
+            {
                 let s = self.seg_at(h);
                 if s != NONE {
                     return Inserted::OnSegment(s);
@@ -542,17 +632,19 @@ impl Cdt {
         let nb = self.boundary.len();
         // Save what lives in cavity slots before they are reused: the outer twin of each
         // boundary edge (which also gives its ends and segment) and the region label.
+        self.bedge.clear();
         for j in 0..nb {
             let h = self.boundary[j];
             let t_in = (h / 3) as usize;
+            let i = (h % 3) as usize;
             self.breg.push(self.treg[t_in]);
-            self.boundary[j] = self.tn[t_in][(h % 3) as usize];
+            let (q, r) = self.edge_ends(h);
+            self.bedge.push((q, r, self.ts[t_in][i]));
+            self.boundary[j] = self.tn[t_in][i];
         }
         for j in 0..nb {
             let outer = self.boundary[j];
-            // The outer half-edge runs r → q.
-            let (r, q) = self.edge_ends(outer);
-            let s = self.seg_at(outer);
+            let (q, r, s) = self.bedge[j];
             let t = if j < ncav {
                 self.cavity[j]
             } else {
@@ -563,8 +655,10 @@ impl Cdt {
             self.tv[tu] = [pv, q, r];
             self.ts[tu] = [s, NONE, NONE];
             self.treg[tu] = self.breg[j];
-            self.tn[tu][0] = outer;
-            self.tn[(outer / 3) as usize][(outer % 3) as usize] = 3 * t;
+            self.tn[tu] = [outer, NONE, NONE];
+            if outer != NONE {
+                self.tn[(outer / 3) as usize][(outer % 3) as usize] = 3 * t;
+            }
         }
         for j in nb..ncav {
             let t = self.cavity[j];
@@ -580,10 +674,15 @@ impl Cdt {
         for j in 0..nb {
             let t = self.new_tris[j];
             let [_, q, r] = self.tv[t as usize];
+            self.vtri[q as usize] = t;
+            self.vtri[r as usize] = t;
             let t2 = self.vmark[r as usize];
+            if t2 == NONE {
+                // The fan is open here: a boundary segment was split and has no outside.
+                continue;
+            }
             self.tn[t as usize][1] = 3 * t2 + 2;
             self.tn[t2 as usize][2] = 3 * t + 1;
-            self.vtri[q as usize] = t;
         }
         for j in 0..nb {
             let q = self.tv[self.new_tris[j] as usize][1];

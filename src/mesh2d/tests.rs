@@ -196,3 +196,78 @@ fn right_triangle_area_refinement() {
     let m = triangulate(&p, &opts).unwrap();
     assert_ok(&m, 2.0);
 }
+
+#[test]
+fn crossing_segments_are_reported_or_split() {
+    let mut p = Pslg::default();
+    p.points = vec![
+        [0.0, 0.0],
+        [1.0, 0.0],
+        [1.0, 1.0],
+        [0.0, 1.0],
+        [0.1, 0.2],
+        [0.9, 0.75],
+    ];
+    p.segments = vec![[0, 1], [1, 2], [2, 3], [3, 0], [0, 2], [1, 3], [4, 5]];
+    let err = triangulate(&p, &Options::default()).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            crate::Error::Input(crate::InputError::CrossingSegments { .. })
+        ),
+        "{err}"
+    );
+    let opts = Options {
+        split_crossings: true,
+        min_angle: Some(28.0),
+        ..Options::default()
+    };
+    let m = triangulate(&p, &opts).unwrap();
+    assert_ok(&m, 1.0);
+    // The two diagonals cross at the centre; [4, 5] crosses both diagonals.
+    assert!(m.vertices.contains(&[0.5, 0.5]));
+    assert!(m.complete);
+    // Angles below the bound only at crossing points (4 subsegments meet there, the diagonal and
+    // [4, 5] cross at about 10.5 degrees).
+    let mut degree = vec![0; m.vertices.len()];
+    for e in &m.segments {
+        degree[e[0] as usize] += 1;
+        degree[e[1] as usize] += 1;
+    }
+    for t in &m.triangles {
+        let p = t.map(|v| m.vertices[v as usize]);
+        let lo = crate::geometry::triangle_angles_deg(p[0], p[1], p[2])
+            .into_iter()
+            .fold(180.0, f64::min);
+        // Exempt: triangles at a crossing, and the rings of isosceles triangles around it.
+        let near_crossing = (0..m.vertices.len()).filter(|&v| degree[v] >= 4).any(|v| {
+            p.iter()
+                .all(|q| crate::geometry::dist2(*q, m.vertices[v]) < 0.2 * 0.2)
+        });
+        assert!(
+            lo >= 28.0 - 1e-9 || near_crossing,
+            "min angle {lo} at {p:?}"
+        );
+    }
+}
+
+#[test]
+fn pentagon_area_refinement() {
+    let mut p = Pslg::default();
+    p.points = vec![[0.0, 0.0], [4.0, 0.0], [4.0, 3.0], [2.0, 4.0], [0.0, 3.0]];
+    p.segments = vec![[0, 1], [1, 2], [2, 3], [3, 4], [4, 0]];
+    for opts in [
+        Options {
+            max_area: Some(0.05),
+            ..Options::default()
+        },
+        Options {
+            max_area: Some(0.01),
+            min_angle: Some(20.0),
+            ..Options::default()
+        },
+    ] {
+        let m = triangulate(&p, &opts).unwrap();
+        assert_ok(&m, 14.0);
+    }
+}

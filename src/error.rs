@@ -30,7 +30,8 @@ pub enum InputError {
     NonFiniteHole { hole: usize },
     /// A hole seed lies outside the meshed domain (or on a segment).
     HoleOutsideDomain { hole: usize },
-    /// A region seed has a NaN or infinite coordinate or attribute.
+    /// A region seed has a NaN or infinite coordinate or attribute, or a maximum area that is
+    /// not positive.
     NonFiniteRegion { region: usize },
     /// A region seed lies outside the meshed domain (or on a segment).
     RegionOutsideDomain { region: usize },
@@ -92,7 +93,7 @@ impl fmt::Display for InputError {
             NonFiniteRegion { region } => {
                 write!(
                     f,
-                    "region {region} has a NaN or infinite coordinate or attribute"
+                    "region {region} has a NaN or infinite coordinate or attribute, or a maximum area that is not positive"
                 )
             }
             RegionOutsideDomain { region } => {

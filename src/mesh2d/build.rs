@@ -27,9 +27,32 @@ pub(super) fn run(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
     r.register_segments(&pieces)?;
     r.drain_splits()?;
     classify(&mut r, pslg, opts)?;
+    // Refinement works on the domain only (Triangle's carving): rounded split points on slanted
+    // segments leave near-flat slivers outside, which the domain never needs to see.
     r.cdt.carve();
     r.refine()?;
-    Ok(output(&r, n, pslg, opts))
+    // Cavities stop at segments, so a vertex can encroach a segment across an exterior notch
+    // unseen. Sweep every subsegment against every vertex; split and refine until none is
+    // encroached, which makes the constrained triangulation truly Delaunay.
+    let mut passes = 0;
+    while r.sweep_encroached() > 0 {
+        passes += 1;
+        if passes > 64 {
+            return Err(Error::Internal("encroachment sweep did not settle".into()));
+        }
+        r.drain_splits()?;
+        r.refine()?;
+    }
+    let mesh = output(&r, n, pslg, opts)?;
+    // Never hand back a broken mesh as a success: the structural invariants are cheap to
+    // check; the exact empty-circle check runs too in debug builds and in `validate()`.
+    let check = if cfg!(debug_assertions) {
+        mesh.validate()
+    } else {
+        super::validate::validate_structure(&mesh)
+    };
+    check.map_err(|e| Error::Internal(format!("output check failed: {e}")))?;
+    Ok(mesh)
 }
 
 fn check_options(o: &Options) -> Result<(), Error> {
@@ -111,7 +134,7 @@ fn check_input(p: &Pslg) -> Result<(), Error> {
         }
     }
     for (i, r) in p.regions.iter().enumerate() {
-        let bad_area = matches!(r.max_area, Some(a) if a.is_nan());
+        let bad_area = matches!(r.max_area, Some(a) if a.is_nan() || a <= 0.0);
         if !r.point[0].is_finite()
             || !r.point[1].is_finite()
             || !r.attribute.is_finite()
@@ -568,10 +591,11 @@ fn seed_triangle(cdt: &Cdt, p: [f64; 2]) -> Option<u32> {
 fn flood(cdt: &mut Cdt, stack: &mut Vec<u32>, label: u32) {
     while let Some(t) = stack.pop() {
         for i in 0..3 {
-            if cdt.ts[t as usize][i] != NONE {
+            let tw = cdt.tn[t as usize][i];
+            if cdt.ts[t as usize][i] != NONE || tw == NONE {
                 continue;
             }
-            let n = cdt.tn[t as usize][i] / 3;
+            let n = tw / 3;
             let cur = cdt.treg[n as usize];
             if cur == label || (label != EXTERIOR && cur == EXTERIOR) {
                 continue;
@@ -586,7 +610,7 @@ fn flood(cdt: &mut Cdt, stack: &mut Vec<u32>, label: u32) {
 
 /// Builds the output: domain triangles, input vertices at their input index, used Steiner
 /// vertices after them, subsegments on domain edges.
-fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> TriMesh {
+fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
     let cdt = &r.cdt;
     let in_domain = |t: u32| {
         let reg = cdt.treg[t as usize];
@@ -656,16 +680,23 @@ fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> TriMesh {
     let mut segments = Vec::new();
     let mut segment_markers = Vec::new();
     for s in &cdt.segs {
+        if s.a == NONE {
+            continue;
+        }
         let (a, b) = (vmap[s.a as usize], vmap[s.b as usize]);
         if a == NONE || b == NONE {
             continue;
         }
-        if let Some(h) = cdt.find_edge(s.a, s.b) {
-            let tw = cdt.twin(h);
-            if in_domain(h / 3) || (tw != NONE && in_domain(tw / 3)) {
-                segments.push([a, b]);
-                segment_markers.push(s.marker);
-            }
+        let Some(h) = cdt.find_edge(s.a, s.b) else {
+            return Err(Error::Internal(format!(
+                "subsegment ({:?}, {:?}) is missing from the mesh",
+                cdt.pts[s.a as usize], cdt.pts[s.b as usize]
+            )));
+        };
+        let tw = cdt.twin(h);
+        if in_domain(h / 3) || (tw != NONE && in_domain(tw / 3)) {
+            segments.push([a, b]);
+            segment_markers.push(s.marker);
         }
     }
     // As Triangle: a vertex with marker 0 lying on a subsegment takes the subsegment's marker.
@@ -676,7 +707,7 @@ fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> TriMesh {
             }
         }
     }
-    TriMesh {
+    Ok(TriMesh {
         steiner_points: next_v as usize - n,
         vertices,
         vertex_markers,
@@ -687,7 +718,7 @@ fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> TriMesh {
         segments,
         segment_markers,
         complete: r.complete,
-    }
+    })
 }
 
 /// The marker of input segment `s` (1 when the input gives none, as for Triangle's boundary).

@@ -114,5 +114,17 @@ impl fmt::Debug for Options {
 /// Returns an error naming the offending item for invalid input. When the Steiner cap is hit the
 /// mesh is still returned (valid and conforming) with `complete == false`.
 pub fn triangulate(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
-    build::run(pslg, opts)
+    // A bug must never take the host program down: a panic becomes `Error::Internal`.
+    // (The state is discarded, so unwind safety of the borrowed inputs is not a concern.)
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| build::run(pslg, opts))) {
+        Ok(r) => r,
+        Err(payload) => {
+            let msg = payload
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown panic".into());
+            Err(Error::Internal(format!("caught a panic: {msg}")))
+        }
+    }
 }

@@ -136,6 +136,88 @@ impl<'a> Refiner<'a> {
         }
     }
 
+    /// Queues every subsegment that some vertex (used by the domain, or an input point)
+    /// encroaches; returns how many. A uniform grid over the vertices keeps it near-linear.
+    pub fn sweep_encroached(&mut self) -> usize {
+        let refining = self.will_refine();
+        let cdt = &self.cdt;
+        let live = |s: &Seg| s.a != NONE && (refining || s.input != NONE);
+        if !cdt.segs.iter().any(live) {
+            return 0;
+        }
+        let used: Vec<u32> = (0..cdt.pts.len() as u32)
+            .filter(|&v| {
+                v != cdt.ghost && ((v as usize) < self.n_input || cdt.vtri[v as usize] != NONE)
+            })
+            .collect();
+        if used.is_empty() {
+            return 0;
+        }
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for &v in &used {
+            let p = cdt.pts[v as usize];
+            for k in 0..2 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let g = ((used.len() as f64).sqrt().ceil() as usize).clamp(1, 2048);
+        let w = [
+            ((hi[0] - lo[0]) / g as f64).max(f64::MIN_POSITIVE),
+            ((hi[1] - lo[1]) / g as f64).max(f64::MIN_POSITIVE),
+        ];
+        let cell = |x: f64, k: usize| -> usize {
+            let c = ((x - lo[k]) / w[k]).floor();
+            if c.is_nan() || c < 0.0 {
+                0
+            } else {
+                (c as usize).min(g - 1)
+            }
+        };
+        let mut start = vec![0u32; g * g + 1];
+        for &v in &used {
+            let p = cdt.pts[v as usize];
+            start[cell(p[1], 1) * g + cell(p[0], 0) + 1] += 1;
+        }
+        for i in 0..g * g {
+            start[i + 1] += start[i];
+        }
+        let mut fill = start.clone();
+        let mut items = vec![0u32; used.len()];
+        for &v in &used {
+            let p = cdt.pts[v as usize];
+            let c = cell(p[1], 1) * g + cell(p[0], 0);
+            items[fill[c] as usize] = v;
+            fill[c] += 1;
+        }
+        let mut hits = Vec::new();
+        for (s, seg) in cdt.segs.iter().enumerate() {
+            // Retired segments are gone; hull edges only bound the domain when refining.
+            if cdt.seg_queued[s] || !live(seg) {
+                continue;
+            }
+            let (pa, pb) = (cdt.pts[seg.a as usize], cdt.pts[seg.b as usize]);
+            let c = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
+            // The float radius only picks grid cells; it is padded, the test itself is exact.
+            let r = 0.5 * dist2(pa, pb).sqrt() * (1.0 + 1e-9) + 1e-300;
+            'cells: for y in cell(c[1] - r, 1)..=cell(c[1] + r, 1) {
+                for x in cell(c[0] - r, 0)..=cell(c[0] + r, 0) {
+                    let ci = y * g + x;
+                    for &v in &items[start[ci] as usize..start[ci + 1] as usize] {
+                        if v != seg.a && v != seg.b && encroaches(pa, pb, cdt.pts[v as usize]) {
+                            hits.push(s as SegId);
+                            break 'cells;
+                        }
+                    }
+                }
+            }
+        }
+        for &s in &hits {
+            self.cdt.queue_split(s);
+        }
+        hits.len()
+    }
+
     /// Splits queued segments until none is left (the recursion of Fig. 2 step 8).
     pub fn drain_splits(&mut self) -> Result<(), Error> {
         while let Some(s) = self.cdt.split_queue.pop() {
@@ -193,6 +275,12 @@ impl<'a> Refiner<'a> {
         };
         let mv = match self.cdt.insert(m, start, Mode::Force, input, None) {
             Inserted::Yes(v) => v,
+            // The rounded split point is an existing vertex lying (within rounding) on the
+            // segment: split there instead.
+            Inserted::Duplicate(v) if v != a && v != b => {
+                self.cdt.new_tris.clear();
+                v
+            }
             other => {
                 return Err(Error::Internal(format!(
                     "splitting segment ({pa:?}, {pb:?}) at {m:?}: {other:?}"

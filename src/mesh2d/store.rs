@@ -469,6 +469,32 @@ impl Cdt {
         Err(None)
     }
 
+    /// Finds a live, properly oriented triangle containing `p` (or a ghost in conflict with it)
+    /// by scanning every triangle: the fallback when a walk fails.
+    fn scan_locate(&self, p: [f64; 2]) -> Option<TriId> {
+        let mut ghost_hit = None;
+        for t in 0..self.tv.len() as TriId {
+            if !self.alive(t) {
+                continue;
+            }
+            if self.is_ghost(t) {
+                if ghost_hit.is_none() && self.conflict(t, p) {
+                    ghost_hit = Some(t);
+                }
+                continue;
+            }
+            let [a, b, c] = self.tv[t as usize].map(|v| self.p(v));
+            if orient2d(a, b, c) > 0.0
+                && orient2d(a, b, p) >= 0.0
+                && orient2d(b, c, p) >= 0.0
+                && orient2d(c, a, p) >= 0.0
+            {
+                return Some(t);
+            }
+        }
+        ghost_hit
+    }
+
     /// Queues segment `s` for splitting (once).
     pub fn queue_split(&mut self, s: SegId) {
         if !self.seg_queued[s as usize] {
@@ -506,7 +532,12 @@ impl Cdt {
                 let t = match self.locate(t0, p, mode == Mode::Provisional) {
                     Ok(t) => t,
                     Err(Some(s)) => return Inserted::Encroached(s),
-                    Err(None) => return Inserted::LostWalk,
+                    // The walk can cycle through rounding-inverted slivers outside the domain:
+                    // fall back to a scan (rare).
+                    Err(None) => match self.scan_locate(p) {
+                        Some(t) => t,
+                        None => return Inserted::LostWalk,
+                    },
                 };
                 let v = self.tv[t as usize];
                 for &u in &v {

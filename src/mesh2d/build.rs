@@ -49,7 +49,7 @@ pub(super) fn run(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
     let check = if cfg!(debug_assertions) {
         mesh.validate()
     } else {
-        super::validate::validate_structure(&mesh)
+        super::validate::validate_structure(&mesh, false)
     };
     check.map_err(|e| Error::Internal(format!("output check failed: {e}")))?;
     Ok(mesh)

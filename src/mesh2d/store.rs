@@ -630,9 +630,11 @@ impl Cdt {
                 // on its line). Without walls this loses no cavity triangle (the cavity is
                 // star-shaped from `p`); with walls it stops the cavity from wrapping around a
                 // vertex into triangles hidden behind a segment.
-                let (a, b) = self.edge_ends(h);
-                let visible =
-                    a == self.ghost || b == self.ghost || orient2d(self.p(a), self.p(b), p) >= 0.0;
+                // (While the input points go in there are no segments and nothing to hide.)
+                let visible = self.segs.is_empty() || {
+                    let (a, b) = self.edge_ends(h);
+                    a == self.ghost || b == self.ghost || orient2d(self.p(a), self.p(b), p) >= 0.0
+                };
                 if st != outside && visible && self.conflict(n, p) {
                     self.stamp[n as usize] = inside;
                     self.cavity.push(n);

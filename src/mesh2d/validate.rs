@@ -8,12 +8,13 @@ use crate::geometry::circumcenter;
 use crate::predicates::{incircle, orient2d};
 
 pub(super) fn validate(m: &TriMesh) -> Result<(), String> {
-    validate_structure(m)?;
+    validate_structure(m, true)?;
     check_empty_circles(m)
 }
 
-/// Everything but the empty-circle check: indices, orientation, adjacency, subsegments.
-pub(super) fn validate_structure(m: &TriMesh) -> Result<(), String> {
+/// Everything but the empty-circle check: indices, orientation, subsegments, and with
+/// `adjacency` the neighbour table.
+pub(super) fn validate_structure(m: &TriMesh, adjacency: bool) -> Result<(), String> {
     let nv = m.vertices.len();
     let nt = m.triangles.len();
     if m.neighbors.len() != nt {
@@ -44,7 +45,7 @@ pub(super) fn validate_structure(m: &TriMesh) -> Result<(), String> {
         }
         for i in 0..3 {
             let n = m.neighbors[t][i];
-            if n == NONE {
+            if n == NONE || !adjacency {
                 continue;
             }
             if n as usize >= nt {
@@ -71,9 +72,19 @@ pub(super) fn validate_structure(m: &TriMesh) -> Result<(), String> {
     }
     let mut found = vec![false; m.segments.len()];
     if !wanted.is_empty() {
+        // Only edges between two subsegment endpoints can be subsegments: skip the hashing
+        // for every other edge.
+        let mut endpoint = vec![false; nv];
+        for e in &m.segments {
+            endpoint[e[0] as usize] = true;
+            endpoint[e[1] as usize] = true;
+        }
         for tri in &m.triangles {
             for i in 0..3 {
                 let (p, q) = (tri[i], tri[(i + 1) % 3]);
+                if !(endpoint[p as usize] && endpoint[q as usize]) {
+                    continue;
+                }
                 if let Some(&s) = wanted.get(&(p.min(q), p.max(q))) {
                     found[s] = true;
                 }

@@ -108,6 +108,9 @@ pub struct Cdt {
     cavity: Vec<TriId>,
     boundary: Vec<u32>,
     breg: Vec<u32>,
+    bflat: Vec<bool>,
+    /// Triangles made flat or inverted by rounding (see `same_input_segment`).
+    tflat: Vec<bool>,
     bedge: Vec<(VertexId, VertexId, SegId)>,
     /// Endpoints of each input segment (to recognise points on one input segment).
     pub inseg_ends: Vec<[VertexId; 2]>,
@@ -161,6 +164,8 @@ impl Cdt {
             cavity: Vec::new(),
             boundary: Vec::new(),
             breg: Vec::new(),
+            bflat: Vec::new(),
+            tflat: Vec::new(),
             bedge: Vec::new(),
             inseg_ends: Vec::new(),
             vmark: vec![NONE; n + 1],
@@ -201,6 +206,7 @@ impl Cdt {
         self.tn.push([NONE; 3]);
         self.ts.push([NONE; 3]);
         self.treg.push(NO_REGION);
+        self.tflat.push(false);
         self.stamp.push(0);
         t
     }
@@ -413,6 +419,18 @@ impl Cdt {
             let b = self.p(v[prev(k)]);
             let o = orient2d(a, b, p);
             o > 0.0 || (o == 0.0 && strictly_between(a, b, p))
+        } else if self.tflat[t as usize] {
+            // A rounding-flat sliver (three points of one input segment): decide with its true
+            // orientation, so the cavity search sees the geometry the coordinates really have.
+            let (a, b, c) = (self.p(v[0]), self.p(v[1]), self.p(v[2]));
+            let o = orient2d(a, b, c);
+            if o > 0.0 {
+                incircle(a, b, c, p) > 0.0
+            } else if o < 0.0 {
+                incircle(a, c, b, p) > 0.0
+            } else {
+                false
+            }
         } else {
             incircle(self.p(v[0]), self.p(v[1]), self.p(v[2]), p) > 0.0
         }
@@ -646,13 +664,15 @@ impl Cdt {
         }
         // Every new finite triangle must be counter-clockwise; a point exactly on a wall (not
         // the segment being split) would make a flat one.
-        for &h in &self.boundary {
+        self.bflat.clear();
+        for j in 0..self.boundary.len() {
+            let h = self.boundary[j];
             let (q, r) = self.edge_ends(h);
-            if q != self.ghost
-                && r != self.ghost
-                && orient2d(p, self.p(q), self.p(r)) <= 0.0
-                && !self.same_input_segment(on_input_seg, q, r)
-            {
+            let flat =
+                q != self.ghost && r != self.ghost && orient2d(p, self.p(q), self.p(r)) <= 0.0;
+            let tolerated = flat && self.same_input_segment(on_input_seg, q, r);
+            self.bflat.push(tolerated);
+            if flat && !tolerated {
                 let s = self.seg_at(h);
                 if s != NONE {
                     return Inserted::OnSegment(s);
@@ -701,6 +721,7 @@ impl Cdt {
             self.new_tris.push(t);
             let tu = t as usize;
             self.tv[tu] = [pv, q, r];
+            self.tflat[tu] = self.bflat[j];
             self.ts[tu] = [s, NONE, NONE];
             self.treg[tu] = self.breg[j];
             self.tn[tu] = [outer, NONE, NONE];

@@ -272,15 +272,27 @@ fn pentagon_area_refinement() {
     }
 }
 
-#[test]
-#[ignore = "known bug: rounding-inverted exterior slivers along a slanted 1000:1 sliver make a \
-            missing subsegment split forever (reported as Error::Internal); see issue 2 note"]
-fn slanted_sliver_q30() {
+fn slanted_sliver() -> Pslg {
     let mut p = Pslg::default();
     p.points = vec![[0.0, 0.0], [1.0, 0.3], [1.0, 0.3 + 1e-3], [0.0, 1e-3]];
     p.segments = vec![[0, 1], [1, 2], [2, 3], [3, 0]];
+    p
+}
+
+#[test]
+fn slanted_sliver_conforms() {
+    // Rounding-inverted slivers appear outside this domain; conflict tests on them use their
+    // true orientation, so missing subsegments are recovered.
+    let p = slanted_sliver();
     let m = triangulate(&p, &Options::default()).unwrap();
-    m.validate().unwrap();
+    assert_ok(&m, 1e-3);
+}
+
+#[test]
+#[ignore = "known bug: q30 in a slanted 1000:1 sliver ends in Error::Internal (a split point lands \
+            flat against a segment); see issue 2 note"]
+fn slanted_sliver_q30() {
+    let p = slanted_sliver();
     let m = triangulate(
         &p,
         &Options {
@@ -289,5 +301,5 @@ fn slanted_sliver_q30() {
         },
     )
     .unwrap();
-    m.validate().unwrap();
+    assert_ok(&m, 1e-3);
 }

@@ -7,6 +7,7 @@
 //! oversized triangles (paper Fig. 4, `Provisional` circumcenter / off-center insertion).
 
 mod build;
+mod grid;
 mod output;
 mod refine;
 mod store;

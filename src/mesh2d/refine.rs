@@ -5,6 +5,7 @@ use std::cmp::Reverse;
 use std::collections::{BinaryHeap, VecDeque};
 
 use super::build::{segment_marker, Piece};
+use super::grid::PointGrid;
 use super::store::{Cdt, Inserted, Mode, Seg, SegId, Start, TriId, EXTERIOR, HOLE, NO_REGION};
 use super::{Options, NONE};
 use crate::error::Error;
@@ -153,43 +154,7 @@ impl<'a> Refiner<'a> {
         if used.is_empty() {
             return 0;
         }
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for &v in &used {
-            let p = cdt.pts[v as usize];
-            for k in 0..2 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
-        }
-        let g = ((used.len() as f64).sqrt().ceil() as usize).clamp(1, 2048);
-        let w = [
-            ((hi[0] - lo[0]) / g as f64).max(f64::MIN_POSITIVE),
-            ((hi[1] - lo[1]) / g as f64).max(f64::MIN_POSITIVE),
-        ];
-        let cell = |x: f64, k: usize| -> usize {
-            let c = ((x - lo[k]) / w[k]).floor();
-            if c.is_nan() || c < 0.0 {
-                0
-            } else {
-                (c as usize).min(g - 1)
-            }
-        };
-        let mut start = vec![0u32; g * g + 1];
-        for &v in &used {
-            let p = cdt.pts[v as usize];
-            start[cell(p[1], 1) * g + cell(p[0], 0) + 1] += 1;
-        }
-        for i in 0..g * g {
-            start[i + 1] += start[i];
-        }
-        let mut fill = start.clone();
-        let mut items = vec![0u32; used.len()];
-        for &v in &used {
-            let p = cdt.pts[v as usize];
-            let c = cell(p[1], 1) * g + cell(p[0], 0);
-            items[fill[c] as usize] = v;
-            fill[c] += 1;
-        }
+        let grid = PointGrid::new(&cdt.pts, &used);
         let mut hits = Vec::new();
         for (s, seg) in cdt.segs.iter().enumerate() {
             // Retired segments are gone; hull edges only bound the domain when refining.
@@ -200,16 +165,11 @@ impl<'a> Refiner<'a> {
             let c = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
             // The float radius only picks grid cells; it is padded, the test itself is exact.
             let r = 0.5 * dist2(pa, pb).sqrt() * (1.0 + 1e-9) + 1e-300;
-            'cells: for y in cell(c[1] - r, 1)..=cell(c[1] + r, 1) {
-                for x in cell(c[0] - r, 0)..=cell(c[0] + r, 0) {
-                    let ci = y * g + x;
-                    for &v in &items[start[ci] as usize..start[ci + 1] as usize] {
-                        if v != seg.a && v != seg.b && encroaches(pa, pb, cdt.pts[v as usize]) {
-                            hits.push(s as SegId);
-                            break 'cells;
-                        }
-                    }
-                }
+            let clear = grid.for_each_near(c, r, |v| {
+                v == seg.a || v == seg.b || !encroaches(pa, pb, cdt.pts[v as usize])
+            });
+            if !clear {
+                hits.push(s as SegId);
             }
         }
         for &s in &hits {

@@ -3,6 +3,7 @@
 
 use std::collections::HashMap;
 
+use super::grid::PointGrid;
 use super::{TriMesh, NONE};
 use crate::geometry::circumcenter;
 use crate::predicates::{incircle, orient2d};
@@ -109,62 +110,26 @@ fn check_empty_circles(m: &TriMesh) -> Result<(), String> {
     if nv == 0 || m.triangles.is_empty() {
         return Ok(());
     }
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for p in &m.vertices {
-        for k in 0..2 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    let g = ((nv as f64).sqrt().ceil() as usize).clamp(1, 2048);
-    let w = [
-        ((hi[0] - lo[0]) / g as f64).max(f64::MIN_POSITIVE),
-        ((hi[1] - lo[1]) / g as f64).max(f64::MIN_POSITIVE),
-    ];
-    let cell = |x: f64, k: usize| -> usize {
-        let c = ((x - lo[k]) / w[k]).floor();
-        if c.is_nan() || c < 0.0 {
-            0
-        } else {
-            (c as usize).min(g - 1)
-        }
-    };
-    let mut start = vec![0u32; g * g + 1];
-    for p in &m.vertices {
-        start[cell(p[1], 1) * g + cell(p[0], 0) + 1] += 1;
-    }
-    for i in 0..g * g {
-        start[i + 1] += start[i];
-    }
-    let mut fill = start.clone();
-    let mut items = vec![0u32; nv];
-    for (i, p) in m.vertices.iter().enumerate() {
-        let c = cell(p[1], 1) * g + cell(p[0], 0);
-        items[fill[c] as usize] = i as u32;
-        fill[c] += 1;
-    }
+    let ids: Vec<u32> = (0..nv as u32).collect();
+    let grid = PointGrid::new(&m.vertices, &ids);
     for (t, tri) in m.triangles.iter().enumerate() {
         let [a, b, c] = tri.map(|v| m.vertices[v as usize]);
         let Some(o) = circumcenter(a, b, c) else {
             return Err(format!("triangle {t} has no finite circumcenter"));
         };
         let r = ((o[0] - a[0]).hypot(o[1] - a[1])) * (1.0 + 1e-9) + 1e-300;
-        let (x0, x1) = (cell(o[0] - r, 0), cell(o[0] + r, 0));
-        let (y0, y1) = (cell(o[1] - r, 1), cell(o[1] + r, 1));
-        for y in y0..=y1 {
-            for x in x0..=x1 {
-                let cidx = y * g + x;
-                for &v in &items[start[cidx] as usize..start[cidx + 1] as usize] {
-                    if tri.contains(&v) {
-                        continue;
-                    }
-                    if incircle(a, b, c, m.vertices[v as usize]) > 0.0 {
-                        return Err(format!(
-                            "vertex {v} lies inside the circumcircle of triangle {t}"
-                        ));
-                    }
-                }
+        let mut inside = None;
+        grid.for_each_near(o, r, |v| {
+            if !tri.contains(&v) && incircle(a, b, c, m.vertices[v as usize]) > 0.0 {
+                inside = Some(v);
+                return false;
             }
+            true
+        });
+        if let Some(v) = inside {
+            return Err(format!(
+                "vertex {v} lies inside the circumcircle of triangle {t}"
+            ));
         }
     }
     Ok(())

@@ -71,6 +71,18 @@ pub(super) fn validate_structure(m: &TriMesh, adjacency: bool) -> Result<(), Str
     for (s, e) in m.segments.iter().enumerate() {
         wanted.insert((e[0].min(e[1]), e[0].max(e[1])), s);
     }
+    // Every boundary edge (no neighbour) must be a subsegment: the domain is bounded by segments.
+    for (t, tri) in m.triangles.iter().enumerate() {
+        for i in 0..3 {
+            if m.neighbors[t][i] != NONE {
+                continue;
+            }
+            let (p, q) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+            if !wanted.contains_key(&(p.min(q), p.max(q))) {
+                return Err(format!("boundary edge ({p}, {q}) of triangle {t} is on no segment"));
+            }
+        }
+    }
     let mut found = vec![false; m.segments.len()];
     if !wanted.is_empty() {
         // Only edges between two subsegment endpoints can be subsegments: skip the hashing

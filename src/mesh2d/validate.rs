@@ -79,7 +79,9 @@ pub(super) fn validate_structure(m: &TriMesh, adjacency: bool) -> Result<(), Str
             }
             let (p, q) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
             if !wanted.contains_key(&(p.min(q), p.max(q))) {
-                return Err(format!("boundary edge ({p}, {q}) of triangle {t} is on no segment"));
+                return Err(format!(
+                    "boundary edge ({p}, {q}) of triangle {t} is on no segment"
+                ));
             }
         }
     }

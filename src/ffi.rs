@@ -324,6 +324,32 @@ fn array_ptr<T, U>(v: &[T]) -> *const U {
     }
 }
 
+/// The body of every array getter: checks the handle and both out-pointers, then lends the
+/// array chosen by `field` (NULL when empty) and its element count.
+///
+/// # Safety
+/// As for the getters: `m` a live handle, `out` and `count` NULL or valid for a write.
+unsafe fn lend<T, U>(
+    m: *const idm_mesher2d,
+    out: *mut *const U,
+    count: *mut usize,
+    what: &str,
+    field: impl FnOnce(&TriMesh) -> &Vec<T>,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let mesh = unsafe { mesh_of(m) }?;
+        check_out(out, what)?;
+        check_out(count, "count")?;
+        let v = field(mesh);
+        unsafe {
+            out.write(array_ptr(v));
+            count.write(v.len());
+        }
+        Ok(())
+    })
+}
+
 /// Grows `v` by `extra` elements, reporting allocation failure instead of aborting.
 fn reserve<T>(v: &mut Vec<T>, extra: usize, what: &str) -> CallResult {
     v.try_reserve(extra)
@@ -719,17 +745,8 @@ pub unsafe extern "C" fn idm_mesher2d_vertices(
     xy: *mut *const f64,
     count: *mut usize,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let mesh = unsafe { mesh_of(m) }?;
-        check_out(xy, "xy")?;
-        check_out(count, "count")?;
-        unsafe {
-            xy.write(array_ptr(&mesh.vertices));
-            count.write(mesh.vertices.len());
-        }
-        Ok(())
-    })
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { lend(m, xy, count, "xy", |mesh| &mesh.vertices) }
 }
 
 /// Lends one marker per vertex (`*count` = number of vertices).
@@ -742,17 +759,8 @@ pub unsafe extern "C" fn idm_mesher2d_vertex_markers(
     markers: *mut *const i32,
     count: *mut usize,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let mesh = unsafe { mesh_of(m) }?;
-        check_out(markers, "markers")?;
-        check_out(count, "count")?;
-        unsafe {
-            markers.write(array_ptr(&mesh.vertex_markers));
-            count.write(mesh.vertex_markers.len());
-        }
-        Ok(())
-    })
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { lend(m, markers, count, "markers", |mesh| &mesh.vertex_markers) }
 }
 
 /// Lends the triangles: `*abc` gets 3*count vertex indices, each triangle counter-clockwise.
@@ -765,17 +773,8 @@ pub unsafe extern "C" fn idm_mesher2d_triangles(
     abc: *mut *const u32,
     count: *mut usize,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let mesh = unsafe { mesh_of(m) }?;
-        check_out(abc, "abc")?;
-        check_out(count, "count")?;
-        unsafe {
-            abc.write(array_ptr(&mesh.triangles));
-            count.write(mesh.triangles.len());
-        }
-        Ok(())
-    })
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { lend(m, abc, count, "abc", |mesh| &mesh.triangles) }
 }
 
 /// Lends the neighbours: `*nbr` gets 3*count triangle indices; entry 3t+i is the triangle
@@ -789,17 +788,8 @@ pub unsafe extern "C" fn idm_mesher2d_neighbors(
     nbr: *mut *const u32,
     count: *mut usize,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let mesh = unsafe { mesh_of(m) }?;
-        check_out(nbr, "nbr")?;
-        check_out(count, "count")?;
-        unsafe {
-            nbr.write(array_ptr(&mesh.neighbors));
-            count.write(mesh.neighbors.len());
-        }
-        Ok(())
-    })
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { lend(m, nbr, count, "nbr", |mesh| &mesh.neighbors) }
 }
 
 /// Lends one regional attribute per triangle (0 for triangles in no region). `*count` is 0
@@ -813,17 +803,8 @@ pub unsafe extern "C" fn idm_mesher2d_triangle_attributes(
     attr: *mut *const f64,
     count: *mut usize,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let mesh = unsafe { mesh_of(m) }?;
-        check_out(attr, "attr")?;
-        check_out(count, "count")?;
-        unsafe {
-            attr.write(array_ptr(&mesh.triangle_attributes));
-            count.write(mesh.triangle_attributes.len());
-        }
-        Ok(())
-    })
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { lend(m, attr, count, "attr", |mesh| &mesh.triangle_attributes) }
 }
 
 /// Lends the subsegments: `*ab` gets 2*count vertex indices and `*markers` (which may be NULL

@@ -127,12 +127,18 @@ mod tests {
     }
 
     #[test]
-    fn off_center_is_closer_than_circumcenter_for_skinny() {
-        let (a, b, c) = ([0.0, 0.0], [1.0, 0.0], [0.5, 0.05]);
+    fn off_center_sits_on_the_short_edge_bisector_at_the_set_distance() {
+        // A skinny triangle whose shortest edge is bc (length 0.1), apex a far away.
+        let (a, b, c) = ([0.0, 0.0], [1.0, 0.0], [1.0, 0.1]);
         let cc = circumcenter(a, b, c).unwrap();
         let k = 0.475 / (15f64.to_radians()).tan();
         let oc = steiner_point(a, b, c, Some(k)).unwrap();
-        // The shortest edges are the two long-ish slanted ones? No: |ab| = 1 is longest here.
-        assert!(dist2(oc, [0.25, 0.025]) <= dist2(cc, [0.25, 0.025]) + 1e-12 || oc == cc);
+        let m = [1.0, 0.05];
+        // On the bisector of bc (the line y = 0.05), k·|bc| from its midpoint, closer than cc.
+        assert!((oc[1] - 0.05).abs() < 1e-12);
+        assert!((dist2(oc, m).sqrt() - k * 0.1).abs() < 1e-12);
+        assert!(dist2(oc, m) < dist2(cc, m));
+        // Without an off-center constant the circumcenter comes back.
+        assert_eq!(steiner_point(a, b, c, None), Some(cc));
     }
 }

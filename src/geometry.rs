@@ -104,6 +104,99 @@ pub fn steiner_point(
     Some([m[0] + (cc[0] - m[0]) * s, m[1] + (cc[1] - m[1]) * s])
 }
 
+// ---------------------------------------------------------------------------------------------
+// 3D constructions (floating point; no decision is taken on them).
+
+use glam::DVec3;
+
+#[inline]
+fn v3(p: [f64; 3]) -> DVec3 {
+    DVec3::from_array(p)
+}
+
+/// Signed volume of tetrahedron `abcd`, positive when `det[b − a, c − a, d − a] > 0`
+/// (TetGen's positive orientation).
+pub fn tet_volume(c: [[f64; 3]; 4]) -> f64 {
+    let a = v3(c[0]);
+    (v3(c[1]) - a).cross(v3(c[2]) - a).dot(v3(c[3]) - a) / 6.0
+}
+
+/// Circumcenter of tetrahedron `abcd`, computed relative to `a` for accuracy; `None` when the
+/// four points are (numerically) coplanar.
+pub fn tet_circumcenter(c: [[f64; 3]; 4]) -> Option<[f64; 3]> {
+    let a = v3(c[0]);
+    let (b, cc, d) = (v3(c[1]) - a, v3(c[2]) - a, v3(c[3]) - a);
+    let det = b.dot(cc.cross(d));
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    let num = cc.cross(d) * b.length_squared()
+        + d.cross(b) * cc.length_squared()
+        + b.cross(cc) * d.length_squared();
+    let o = a + num / (2.0 * det);
+    o.is_finite().then(|| o.to_array())
+}
+
+/// Circumcenter of triangle `abc` in 3D (in its plane); `None` when degenerate.
+pub fn tri_circumcenter3(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Option<[f64; 3]> {
+    let o = v3(a);
+    let (u, w) = (v3(b) - o, v3(c) - o);
+    let n = u.cross(w);
+    let n2 = n.length_squared();
+    if n2 == 0.0 || !n2.is_finite() {
+        return None;
+    }
+    let r = (n.cross(u) * w.length_squared() + w.cross(n) * u.length_squared()) / (2.0 * n2);
+    let p = o + r;
+    p.is_finite().then(|| p.to_array())
+}
+
+/// Squared distance between two points.
+pub fn dist2_3(a: [f64; 3], b: [f64; 3]) -> f64 {
+    v3(a).distance_squared(v3(b))
+}
+
+/// Circumradius over shortest edge (∞ for a flat tetrahedron). 0.61 for the regular one.
+pub fn tet_radius_edge(c: [[f64; 3]; 4]) -> f64 {
+    let Some(o) = tet_circumcenter(c) else {
+        return f64::INFINITY;
+    };
+    let r2 = dist2_3(o, c[0]);
+    let mut e2 = f64::INFINITY;
+    for i in 0..4 {
+        for j in i + 1..4 {
+            e2 = e2.min(dist2_3(c[i], c[j]));
+        }
+    }
+    (r2 / e2).sqrt()
+}
+
+/// Smallest and largest dihedral angle of a tetrahedron, degrees.
+pub fn tet_dihedral_range(c: [[f64; 3]; 4]) -> (f64, f64) {
+    // Face i is opposite corner i; its outward normal is n_i. The dihedral angle at the edge
+    // shared by faces i and j is π minus the angle between their outward normals.
+    let p = c.map(v3);
+    let mut n = [DVec3::ZERO; 4];
+    for (i, ni) in n.iter_mut().enumerate() {
+        let f: Vec<DVec3> = (0..4).filter(|&k| k != i).map(|k| p[k]).collect();
+        let mut m = (f[1] - f[0]).cross(f[2] - f[0]);
+        if m.dot(p[i] - f[0]) > 0.0 {
+            m = -m;
+        }
+        *ni = m.normalize_or_zero();
+    }
+    let (mut lo, mut hi) = (180.0f64, 0.0f64);
+    for i in 0..4 {
+        for j in i + 1..4 {
+            let cosang = (-n[i].dot(n[j])).clamp(-1.0, 1.0);
+            let ang = cosang.acos().to_degrees();
+            lo = lo.min(ang);
+            hi = hi.max(ang);
+        }
+    }
+    (lo, hi)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -24,10 +24,14 @@ pub mod exact;
 pub mod ffi;
 pub mod geometry;
 pub mod input;
+pub mod input3d;
 pub mod io;
 pub mod mesh2d;
+pub mod mesh3d;
 pub mod predicates;
 
 pub use error::{Error, InputError};
 pub use input::{Pslg, Region};
+pub use input3d::{Facet, Plc, Region3};
 pub use mesh2d::{triangulate, Options, SizingFn, TriMesh, NONE};
+pub use mesh3d::{delaunay3d, tetrahedralize, Options3, SizingFn3, TetMesh};

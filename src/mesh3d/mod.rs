@@ -1,0 +1,116 @@
+//! The 3D mesher (paper §4): conforming Delaunay tetrahedralization of a PLC and Delaunay
+//! refinement to a radius-edge bound and a maximum volume.
+//!
+//! Pipeline: validate the input; insert every input point into one Bowyer–Watson kernel
+//! ([`store`]); keep a 1D mesh per input edge and a 2D Delaunay mesh per facet, refined lazily
+//! until each appears in the 3D mesh (work queue of Definition 4.1); classify exterior, holes
+//! and regions by flooding up to facets; then remove skinny and oversized tetrahedra (Fig. 9).
+
+mod output;
+mod validate;
+
+use std::fmt;
+use std::sync::Arc;
+
+pub use output::TetMesh;
+
+use crate::error::Error;
+use crate::input3d::Plc;
+
+/// The "no index" value used in index arrays (for example a missing neighbour).
+pub const NONE: u32 = u32::MAX;
+
+/// A user sizing test, as TetGen's `tetunsuitable`: called with the four corners of a
+/// tetrahedron and its volume; returns `true` when the tetrahedron is too large and must be
+/// split. It must be deterministic; it is called from the meshing thread only.
+pub type SizingFn3 = Arc<dyn Fn([f64; 3], [f64; 3], [f64; 3], [f64; 3], f64) -> bool + Send + Sync>;
+
+/// Meshing options for [`tetrahedralize`]. `Options3::default()` gives a conforming Delaunay
+/// tetrahedralization of the PLC with no quality or size refinement.
+#[derive(Clone)]
+pub struct Options3 {
+    /// Maximum radius-edge ratio (TetGen's `-q`). `None`: no quality refinement. Must be at
+    /// least 1.0; bounds below about 1.2 may not terminate (as in TetGen). Tetrahedra near
+    /// small input angles are exempt. Default: `None` (TetGen's `-q` alone means 2.0).
+    pub radius_edge: Option<f64>,
+    /// Global maximum tetrahedron volume (TetGen's `-a<volume>`). Default: `None`.
+    pub max_volume: Option<f64>,
+    /// Apply each region's `max_volume` (TetGen's `-a` without a number). Default: `false`.
+    pub region_max_volume: bool,
+    /// Write each region's attribute to its tetrahedra (TetGen's `-A`). Default: `false`.
+    pub region_attributes: bool,
+    /// Maximum number of Steiner points (TetGen's `-S<n>`). When reached, refinement stops and
+    /// the mesh is returned with [`TetMesh::complete`] set to `false`. Default: `None`.
+    pub max_steiner: Option<u64>,
+    /// A user sizing test; see [`SizingFn3`]. Default: `None`.
+    pub sizing: Option<SizingFn3>,
+    /// Print progress lines to standard error during long runs. Default: `false`.
+    pub verbose: bool,
+}
+
+impl Default for Options3 {
+    fn default() -> Self {
+        Options3 {
+            radius_edge: None,
+            max_volume: None,
+            region_max_volume: false,
+            region_attributes: false,
+            max_steiner: None,
+            sizing: None,
+            verbose: false,
+        }
+    }
+}
+
+impl fmt::Debug for Options3 {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Options3")
+            .field("radius_edge", &self.radius_edge)
+            .field("max_volume", &self.max_volume)
+            .field("region_max_volume", &self.region_max_volume)
+            .field("region_attributes", &self.region_attributes)
+            .field("max_steiner", &self.max_steiner)
+            .field("sizing", &self.sizing.as_ref().map(|_| "<fn>"))
+            .field("verbose", &self.verbose)
+            .finish()
+    }
+}
+
+/// Meshes a PLC: conforming Delaunay tetrahedralization of the volume enclosed by the facets
+/// (minus holes), refined to the options' radius-edge and volume bounds.
+///
+/// Returns an error naming the offending item for invalid input. When the Steiner cap is hit the
+/// mesh is still returned (valid and conforming) with `complete == false`.
+pub fn tetrahedralize(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
+    guard(|| {
+        crate::input3d::check_plc(plc)?;
+        let _ = opts;
+        Err(Error::Unsupported(
+            "3D PLC meshing is being written; only delaunay3d() works so far".into(),
+        ))
+    })
+}
+
+/// Delaunay tetrahedralization of a point set (TetGen without `-p`): the tetrahedra fill the
+/// convex hull; there are no facets. Duplicate points are reported as errors.
+pub fn delaunay3d(points: &[[f64; 3]]) -> Result<TetMesh, Error> {
+    guard(|| {
+        let _ = points;
+        Err(Error::Unsupported("being written".into()))
+    })
+}
+
+/// Runs `f`, turning a panic into [`Error::Internal`] so a bug never takes the host down.
+fn guard<T>(f: impl FnOnce() -> Result<T, Error>) -> Result<T, Error> {
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)) {
+        Ok(r) => r,
+        Err(payload) => {
+            let msg = payload
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown panic".into());
+            Err(Error::Internal(format!("caught a panic: {msg}")))
+        }
+    }
+}

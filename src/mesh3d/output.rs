@@ -1,0 +1,94 @@
+//! The output mesh of the 3D mesher.
+
+use crate::error::Error;
+
+/// A tetrahedral mesh produced by [`crate::mesh3d::tetrahedralize`] or
+/// [`crate::mesh3d::delaunay3d`].
+///
+/// Vertex `i < num_input_vertices` is input point `i` (same coordinates, same index), even when
+/// it lies outside the meshed volume (then no tetrahedron uses it). Steiner vertices follow.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TetMesh {
+    /// Vertex coordinates.
+    pub vertices: Vec<[f64; 3]>,
+    /// One marker per vertex: the input marker for input vertices (0 when none was given), the
+    /// facet's or segment's marker for Steiner vertices on one, 0 for interior Steiner vertices.
+    pub vertex_markers: Vec<i32>,
+    /// How many leading vertices are input points.
+    pub num_input_vertices: usize,
+    /// Tetrahedra as vertex indices, positively oriented as in TetGen:
+    /// `det[b − a, c − a, d − a] > 0` for `[a, b, c, d]`.
+    pub tets: Vec<[u32; 4]>,
+    /// `neighbors[t][i]` is the tetrahedron across the face opposite `tets[t][i]`, or
+    /// [`super::NONE`] on the boundary of the meshed volume.
+    pub neighbors: Vec<[u32; 4]>,
+    /// The regional attribute of each tetrahedron when `Options3::region_attributes` is set
+    /// (0.0 for tetrahedra in no region); empty otherwise.
+    pub tet_attributes: Vec<f64>,
+    /// The subfaces: boundary faces and faces lying in input facets; every input facet is the
+    /// union of the subfaces with its marker.
+    pub faces: Vec<[u32; 3]>,
+    /// One marker per subface (inherited from its facet; 0 for hull faces of a point set).
+    pub face_markers: Vec<i32>,
+    /// The subsegments: every input edge (segment or facet loop edge) is the union of the
+    /// subsegments on it.
+    pub edges: Vec<[u32; 2]>,
+    /// One marker per subsegment.
+    pub edge_markers: Vec<i32>,
+    /// `false` when refinement stopped at the Steiner-point cap before meeting every bound.
+    pub complete: bool,
+    /// Number of Steiner points added (vertices beyond the input points that are in the mesh).
+    pub steiner_points: usize,
+}
+
+/// Quality figures of a tetrahedral mesh, as printed by `idmesh tetgen -V`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TetStats {
+    /// Total volume.
+    pub volume: f64,
+    /// Largest circumradius-to-shortest-edge ratio.
+    pub max_radius_edge: f64,
+    /// Smallest dihedral angle, degrees.
+    pub min_dihedral: f64,
+    /// Largest dihedral angle, degrees.
+    pub max_dihedral: f64,
+}
+
+impl TetMesh {
+    /// The corners of tetrahedron `t`.
+    pub fn corners(&self, t: usize) -> [[f64; 3]; 4] {
+        self.tets[t].map(|v| self.vertices[v as usize])
+    }
+
+    /// Total volume of the tetrahedra (floating point, summed per tetrahedron).
+    pub fn volume(&self) -> f64 {
+        (0..self.tets.len())
+            .map(|t| crate::geometry::tet_volume(self.corners(t)))
+            .sum()
+    }
+
+    /// Volume, radius-edge and dihedral-angle figures (zeros for an empty mesh).
+    pub fn stats(&self) -> TetStats {
+        let mut s = TetStats {
+            volume: 0.0,
+            max_radius_edge: 0.0,
+            min_dihedral: if self.tets.is_empty() { 0.0 } else { 180.0 },
+            max_dihedral: 0.0,
+        };
+        for t in 0..self.tets.len() {
+            let c = self.corners(t);
+            s.volume += crate::geometry::tet_volume(c);
+            s.max_radius_edge = s.max_radius_edge.max(crate::geometry::tet_radius_edge(c));
+            let (lo, hi) = crate::geometry::tet_dihedral_range(c);
+            s.min_dihedral = s.min_dihedral.min(lo);
+            s.max_dihedral = s.max_dihedral.max(hi);
+        }
+        s
+    }
+
+    /// Checks the mesh invariants exactly: positive orientation, neighbour symmetry, every
+    /// circumsphere empty of all mesh vertices, every subface a face of the mesh.
+    pub fn validate(&self) -> Result<(), Error> {
+        super::validate::validate_mesh(self)
+    }
+}

@@ -6,7 +6,17 @@
 //! until each appears in the 3D mesh (work queue of Definition 4.1); classify exterior, holes
 //! and regions by flooding up to facets; then remove skinny and oversized tetrahedra (Fig. 9).
 
+mod delaunay;
+mod facet_mesh;
+mod features;
+#[cfg(test)]
+mod kernel_tests;
+mod order;
 mod output;
+mod plc;
+#[cfg(test)]
+mod plc_tests;
+pub mod store;
 mod validate;
 
 use std::fmt;
@@ -84,20 +94,34 @@ impl fmt::Debug for Options3 {
 pub fn tetrahedralize(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
     guard(|| {
         crate::input3d::check_plc(plc)?;
-        let _ = opts;
-        Err(Error::Unsupported(
-            "3D PLC meshing is being written; only delaunay3d() works so far".into(),
-        ))
+        check_options(opts)?;
+        plc::mesh_plc(plc, opts)
     })
 }
 
 /// Delaunay tetrahedralization of a point set (TetGen without `-p`): the tetrahedra fill the
 /// convex hull; there are no facets. Duplicate points are reported as errors.
 pub fn delaunay3d(points: &[[f64; 3]]) -> Result<TetMesh, Error> {
-    guard(|| {
-        let _ = points;
-        Err(Error::Unsupported("being written".into()))
-    })
+    guard(|| delaunay::delaunay(points))
+}
+
+/// Rejects option values that cannot work.
+fn check_options(opts: &Options3) -> Result<(), Error> {
+    if let Some(r) = opts.radius_edge {
+        if !(r.is_finite() && r >= 1.0) {
+            return Err(Error::InvalidOption(format!(
+                "radius-edge bound {r} must be a number of at least 1.0"
+            )));
+        }
+    }
+    if let Some(v) = opts.max_volume {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(Error::InvalidOption(format!(
+                "maximum volume {v} must be a positive number"
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// Runs `f`, turning a panic into [`Error::Internal`] so a bug never takes the host down.

@@ -1,9 +1,477 @@
-//! Exact checks of the 3D mesh invariants. (Being written.)
+//! Exact checks of the 3D mesh invariants: on an output [`TetMesh`] ([`validate_mesh`]) and on
+//! the kernel's [`Tets`] store ([`Tets::check_structure`], [`Tets::check_locally_delaunay`]).
+//!
+//! Every decision is an exact predicate. Floating point only *selects candidates* for the
+//! empty-circumsphere check (a uniform grid around each circumsphere, widened by a bound on the
+//! circumcenter's rounding error); a vertex is reported only when exact insphere says so.
 
-use super::TetMesh;
+use super::store::{Tets, FACE, GHOST};
+use super::{TetMesh, NONE};
 use crate::error::Error;
+use crate::geometry::{dist2_3, tet_circumcenter};
+use crate::predicates::{insphere, orient3d};
 
-/// Checks orientation, neighbour symmetry, empty circumspheres and subfaces (exact).
-pub fn validate_mesh(_mesh: &TetMesh) -> Result<(), Error> {
+/// Checks a tet mesh exactly: index ranges and array lengths; every tet positively oriented;
+/// neighbours mutual, sharing the right three vertices, on opposite sides of them; no face in
+/// more than two tets; every subface a face of some tet; every circumsphere empty of all mesh
+/// vertices. The error names the first offending tet, face or vertex.
+pub fn validate_mesh(mesh: &TetMesh) -> Result<(), Error> {
+    check_mesh(mesh).map_err(|m| Error::Internal(format!("mesh check failed: {m}")))
+}
+
+fn check_mesh(m: &TetMesh) -> Result<(), String> {
+    check_lengths(m)?;
+    check_tets(m)?;
+    let faces = FaceIndex::new(m)?;
+    for (i, f) in m.faces.iter().enumerate() {
+        if f.iter().any(|&v| v as usize >= m.vertices.len()) {
+            return Err(format!("subface {i} has a vertex index out of range"));
+        }
+        if f[0] == f[1] || f[1] == f[2] || f[0] == f[2] {
+            return Err(format!("subface {i} repeats a vertex"));
+        }
+        if !faces.contains(*f) {
+            return Err(format!("subface {i} {f:?} is not a face of any tetrahedron"));
+        }
+    }
+    check_empty_spheres(m)
+}
+
+fn check_lengths(m: &TetMesh) -> Result<(), String> {
+    let (nv, nt) = (m.vertices.len(), m.tets.len());
+    let pairs = [
+        ("vertex markers", m.vertex_markers.len(), nv),
+        ("neighbour rows", m.neighbors.len(), nt),
+        ("face markers", m.face_markers.len(), m.faces.len()),
+        ("edge markers", m.edge_markers.len(), m.edges.len()),
+    ];
+    for (what, got, want) in pairs {
+        if got != want {
+            return Err(format!("{got} {what}, expected {want}"));
+        }
+    }
+    if !m.tet_attributes.is_empty() && m.tet_attributes.len() != nt {
+        return Err(format!(
+            "{} tet attributes for {nt} tetrahedra",
+            m.tet_attributes.len()
+        ));
+    }
+    if m.num_input_vertices > nv {
+        return Err(format!(
+            "{} input vertices but only {nv} vertices",
+            m.num_input_vertices
+        ));
+    }
+    for (i, e) in m.edges.iter().enumerate() {
+        if e.iter().any(|&v| v as usize >= nv) || e[0] == e[1] {
+            return Err(format!("subsegment {i} {e:?} is not a pair of distinct vertices"));
+        }
+    }
     Ok(())
+}
+
+/// Orientation of every tet, and mutual, geometrically consistent neighbours.
+fn check_tets(m: &TetMesh) -> Result<(), String> {
+    let (nv, nt) = (m.vertices.len(), m.tets.len());
+    let p = |v: u32| m.vertices[v as usize];
+    for (t, tv) in m.tets.iter().enumerate() {
+        if tv.iter().any(|&v| v as usize >= nv) {
+            return Err(format!("tet {t} {tv:?} has a vertex index out of range"));
+        }
+        let [a, b, c, d] = tv.map(p);
+        if orient3d(a, b, c, d) >= 0.0 {
+            return Err(format!(
+                "tet {t} {tv:?} is not positively oriented (flat or inverted)"
+            ));
+        }
+    }
+    for (t, tv) in m.tets.iter().enumerate() {
+        for i in 0..4 {
+            let n = m.neighbors[t][i];
+            if n == NONE {
+                continue;
+            }
+            if n as usize >= nt {
+                return Err(format!("tet {t} has neighbour {n} out of range"));
+            }
+            let Some(j) = (0..4).find(|&j| m.neighbors[n as usize][j] == t as u32) else {
+                return Err(format!("tets {t} and {n} are not mutual neighbours"));
+            };
+            let face = FACE[i].map(|k| tv[k]);
+            let other = m.tets[n as usize];
+            let mut fa = face;
+            let mut fb = FACE[j].map(|k| other[k]);
+            fa.sort_unstable();
+            fb.sort_unstable();
+            if fa != fb {
+                return Err(format!(
+                    "tets {t} {tv:?} and {n} {other:?} are neighbours but do not share face {face:?}"
+                ));
+            }
+            // The face is outward for t (t's apex below); n's apex must lie strictly above.
+            let [x, y, z] = face.map(p);
+            if orient3d(x, y, z, p(other[j])) >= 0.0 {
+                return Err(format!(
+                    "tets {t} and {n} lie on the same side of their shared face {face:?}"
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Every distinct face of the mesh, grouped by smallest vertex (counting sort), each group
+/// sorted: detects faces in more than two tets and answers "is this a face" in O(log).
+struct FaceIndex {
+    start: Vec<u32>,
+    keys: Vec<u64>,
+}
+
+impl FaceIndex {
+    /// Records each face once (interior faces from the tet with the smaller index) and fails
+    /// if a face is recorded twice, i.e. it lies in more than two tets or in two tets that are
+    /// not linked as neighbours.
+    fn new(m: &TetMesh) -> Result<FaceIndex, String> {
+        let nv = m.vertices.len();
+        let recorded = |t: usize, i: usize| {
+            let n = m.neighbors[t][i];
+            n == NONE || (t as u32) < n
+        };
+        let sorted = |t: usize, i: usize| {
+            let mut f = FACE[i].map(|k| m.tets[t][k]);
+            f.sort_unstable();
+            f
+        };
+        let mut start = vec![0u32; nv + 1];
+        for t in 0..m.tets.len() {
+            for i in 0..4 {
+                if recorded(t, i) {
+                    start[sorted(t, i)[0] as usize + 1] += 1;
+                }
+            }
+        }
+        for v in 0..nv {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut keys = vec![0u64; start[nv] as usize];
+        for t in 0..m.tets.len() {
+            for i in 0..4 {
+                if recorded(t, i) {
+                    let f = sorted(t, i);
+                    let slot = &mut fill[f[0] as usize];
+                    keys[*slot as usize] = ((f[1] as u64) << 32) | f[2] as u64;
+                    *slot += 1;
+                }
+            }
+        }
+        drop(fill);
+        for v in 0..nv {
+            let group = &mut keys[start[v] as usize..start[v + 1] as usize];
+            group.sort_unstable();
+            if let Some(w) = group.windows(2).find(|w| w[0] == w[1]) {
+                return Err(format!(
+                    "face [{v}, {}, {}] lies in more than two tets, or in two tets that are not \
+                     neighbours",
+                    w[0] >> 32,
+                    w[0] & 0xffff_ffff
+                ));
+            }
+        }
+        Ok(FaceIndex { start, keys })
+    }
+
+    fn contains(&self, mut f: [u32; 3]) -> bool {
+        f.sort_unstable();
+        let group = &self.keys[self.start[f[0] as usize] as usize..self.start[f[0] as usize + 1] as usize];
+        group
+            .binary_search(&(((f[1] as u64) << 32) | f[2] as u64))
+            .is_ok()
+    }
+}
+
+/// Points bucketed into a uniform `g × g × g` grid over their bounding box (compressed cells).
+/// It only selects candidates; decisions on them are exact.
+struct Grid3 {
+    lo: [f64; 3],
+    w: [f64; 3],
+    /// Per-axis allowance for rounding in the cell arithmetic (cells are treated as this much
+    /// wider), so no point is dropped from a query by an ulp.
+    tol: [f64; 3],
+    g: usize,
+    start: Vec<u32>,
+    items: Vec<u32>,
+}
+
+impl Grid3 {
+    fn new(pts: &[[f64; 3]]) -> Grid3 {
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for p in pts {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let g = ((pts.len() as f64 / 2.0).cbrt().ceil() as usize).clamp(1, 256);
+        let w = [0, 1, 2].map(|k| ((hi[k] - lo[k]) / g as f64).max(f64::MIN_POSITIVE));
+        let tol = [0, 1, 2].map(|k| 1e-9 * w[k] + 1e-14 * (lo[k].abs() + hi[k].abs()));
+        let mut grid = Grid3 {
+            lo,
+            w,
+            tol,
+            g,
+            start: vec![0; g * g * g + 1],
+            items: vec![0; pts.len()],
+        };
+        for p in pts {
+            let c = grid.cell_of(*p);
+            grid.start[c + 1] += 1;
+        }
+        for i in 0..g * g * g {
+            grid.start[i + 1] += grid.start[i];
+        }
+        let mut fill = grid.start.clone();
+        for (v, p) in pts.iter().enumerate() {
+            let c = grid.cell_of(*p);
+            grid.items[fill[c] as usize] = v as u32;
+            fill[c] += 1;
+        }
+        grid
+    }
+
+    fn cell(&self, x: f64, k: usize) -> usize {
+        let c = ((x - self.lo[k]) / self.w[k]).floor();
+        if c.is_nan() || c < 0.0 {
+            0
+        } else {
+            (c as usize).min(self.g - 1)
+        }
+    }
+
+    fn cell_of(&self, p: [f64; 3]) -> usize {
+        (self.cell(p[2], 2) * self.g + self.cell(p[1], 1)) * self.g + self.cell(p[0], 0)
+    }
+
+    /// Squared distance from `x` to the interval of cell `i` along axis `k` (0 inside).
+    fn gap2(&self, x: f64, i: usize, k: usize) -> f64 {
+        let lo = self.lo[k] + i as f64 * self.w[k] - self.tol[k];
+        let hi = lo + self.w[k] + 2.0 * self.tol[k];
+        let d = if x < lo {
+            lo - x
+        } else if x > hi {
+            x - hi
+        } else {
+            0.0
+        };
+        d * d
+    }
+
+    /// Calls `f` for every point in the cells that meet the ball of radius `r` around `c` (a
+    /// superset of the points in the ball: edge cells reach to infinity, as points beyond the
+    /// box are clamped into them, and every cell is widened by `tol`). Stops when `f` returns
+    /// an error.
+    fn for_each_in_ball(
+        &self,
+        c: [f64; 3],
+        r: f64,
+        mut f: impl FnMut(u32) -> Result<(), String>,
+    ) -> Result<(), String> {
+        let r2 = r * r;
+        let t = self.tol;
+        let (x0, x1) = (self.cell(c[0] - r - t[0], 0), self.cell(c[0] + r + t[0], 0));
+        let (y0, y1) = (self.cell(c[1] - r - t[1], 1), self.cell(c[1] + r + t[1], 1));
+        for x in x0..=x1 {
+            let dx = if x == 0 || x == self.g - 1 { 0.0 } else { self.gap2(c[0], x, 0) };
+            for y in y0..=y1 {
+                let dy = if y == 0 || y == self.g - 1 { 0.0 } else { self.gap2(c[1], y, 1) };
+                let rest = r2 - dx - dy;
+                if rest < 0.0 {
+                    continue;
+                }
+                let h = rest.sqrt() * (1.0 + 1e-12) + t[2];
+                for z in self.cell(c[2] - h, 2)..=self.cell(c[2] + h, 2) {
+                    let cell = (z * self.g + y) * self.g + x;
+                    for &v in &self.items[self.start[cell] as usize..self.start[cell + 1] as usize]
+                    {
+                        f(v)?;
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Every tet's open circumsphere is empty of all mesh vertices (exact insphere on the
+/// candidates of a grid search; tets whose circumcenter cannot be trusted test every vertex).
+fn check_empty_spheres(m: &TetMesh) -> Result<(), String> {
+    if m.tets.is_empty() {
+        return Ok(());
+    }
+    let grid = Grid3::new(&m.vertices);
+    let p = |v: u32| m.vertices[v as usize];
+    for (t, tv) in m.tets.iter().enumerate() {
+        let c = tv.map(p);
+        let [a, b, cc, d] = c;
+        let test = |w: u32| {
+            // Real tets have orient3d < 0, which flips Shewchuk's insphere sign.
+            if !tv.contains(&w) && insphere(a, b, cc, d, p(w)) < 0.0 {
+                Err(format!(
+                    "vertex {w} lies strictly inside the circumsphere of tet {t} {tv:?}"
+                ))
+            } else {
+                Ok(())
+            }
+        };
+        match sphere_query(c) {
+            Some((center, r)) => grid.for_each_in_ball(center, r, test)?,
+            None => (0..m.vertices.len() as u32).try_for_each(test)?,
+        }
+    }
+    Ok(())
+}
+
+/// A ball that surely contains the circumsphere of the tet: the floating-point circumcenter
+/// with its radius widened by an error bound that grows with the tet's condition (longest
+/// edge cubed over volume). `None` when that bound is meaningless (a nearly flat tet).
+fn sphere_query(c: [[f64; 3]; 4]) -> Option<([f64; 3], f64)> {
+    let center = tet_circumcenter(c)?;
+    let r = c
+        .iter()
+        .map(|&q| dist2_3(center, q))
+        .fold(0.0f64, f64::max)
+        .sqrt();
+    let mut l2 = 0.0f64;
+    for i in 0..4 {
+        for j in i + 1..4 {
+            l2 = l2.max(dist2_3(c[i], c[j]));
+        }
+    }
+    let l = l2.sqrt();
+    let vol6 = crate::geometry::tet_volume(c).abs() * 6.0;
+    let cond = l * l * l / vol6;
+    // Rounding moves the computed center by about cond · ε · (r + l); 1e-10 leaves a margin of
+    // several orders of magnitude over ε = 1.1e-16.
+    let slack = 1e-10 * cond * (r + l) + 1e-300;
+    if !(slack.is_finite() && center.iter().all(|x| x.is_finite())) || slack > 1e3 * (r + l) {
+        return None;
+    }
+    Some((center, r + 2.0 * slack))
+}
+
+impl Tets {
+    /// Debug check of the store: live neighbours with mutual links across the same three
+    /// vertices; real tets positively oriented and on opposite sides of shared faces; each ghost
+    /// has one [`GHOST`] vertex and its hull triangle faces a real tet; the hull is locally
+    /// convex; the vertex-to-tet map points at live incident tets. Exact. The message names the
+    /// first offending tet or vertex.
+    pub fn check_structure(&self) -> Result<(), String> {
+        let p = |v: u32| self.point(v);
+        for t in 0..self.num_slots() as u32 {
+            if !self.alive(t) {
+                continue;
+            }
+            let tv = self.verts(t);
+            let ghosts = tv.iter().filter(|&&v| v == GHOST).count();
+            if ghosts > 1 {
+                return Err(format!("tet {t} {tv:?} has {ghosts} ghost vertices"));
+            }
+            for (i, &v) in tv.iter().enumerate() {
+                if v != GHOST && v as usize >= self.num_vertices() {
+                    return Err(format!("tet {t} has vertex {v} out of range"));
+                }
+                if tv[..i].contains(&v) {
+                    return Err(format!("tet {t} {tv:?} repeats vertex {v}"));
+                }
+            }
+            if ghosts == 0 {
+                let [a, b, c, d] = tv.map(p);
+                if orient3d(a, b, c, d) >= 0.0 {
+                    return Err(format!("real tet {t} {tv:?} is flat or inverted"));
+                }
+            }
+            for f in 0..4 {
+                let (u, g) = self.neighbor(t, f);
+                if u as usize >= self.num_slots() || !self.alive(u) {
+                    return Err(format!("tet {t} face {f}: neighbour {u} is not a live tet"));
+                }
+                if self.neighbor(u, g) != (t, f) {
+                    return Err(format!(
+                        "tet {t} face {f} -> tet {u} face {g}, which does not link back"
+                    ));
+                }
+                let uv = self.verts(u);
+                let face = FACE[f].map(|k| tv[k]);
+                let mut fa = face;
+                let mut fb = FACE[g].map(|k| uv[k]);
+                fa.sort_unstable();
+                fb.sort_unstable();
+                if fa != fb {
+                    return Err(format!(
+                        "tets {t} {tv:?} and {u} {uv:?} are linked across different faces"
+                    ));
+                }
+                let real_t = ghosts == 0;
+                let real_u = !uv.contains(&GHOST);
+                if real_t && real_u {
+                    let [x, y, z] = face.map(p);
+                    if orient3d(x, y, z, p(uv[g])) >= 0.0 {
+                        return Err(format!(
+                            "tets {t} and {u} lie on the same side of face {face:?}"
+                        ));
+                    }
+                }
+                if !real_t && tv[f] == GHOST && !real_u {
+                    return Err(format!("ghost {t}'s hull triangle faces ghost {u}"));
+                }
+                if !real_t && tv[f] != GHOST && !real_u {
+                    // Two hull triangles sharing an edge: the hull must not fold inwards
+                    // there, i.e. u's far vertex is not strictly beyond t's hull triangle.
+                    let k = tv.iter().position(|&v| v == GHOST).unwrap_or(0);
+                    let [x, y, z] = FACE[k].map(|i| p(tv[i]));
+                    let w = uv[g];
+                    if w != GHOST && orient3d(x, y, z, p(w)) > 0.0 {
+                        return Err(format!(
+                            "hull is not convex at ghosts {t} and {u} (vertex {w})"
+                        ));
+                    }
+                }
+            }
+        }
+        for v in 0..self.num_vertices() as u32 {
+            let t = self.vertex_tet(v);
+            if t == NONE {
+                continue;
+            }
+            if t as usize >= self.num_slots() || !self.alive(t) || !self.verts(t).contains(&v) {
+                return Err(format!("vertex {v}'s tet {t} is dead or does not contain it"));
+            }
+        }
+        Ok(())
+    }
+
+    /// Debug check that every interior face is locally Delaunay: the apex of the tet across a
+    /// face is not strictly inside the circumsphere of the tet, and no vertex is beyond a hull
+    /// triangle's circumcircle test (the ghost conflict rule). With a valid structure this
+    /// means the whole tetrahedralization is Delaunay. Exact.
+    pub fn check_locally_delaunay(&self) -> Result<(), String> {
+        for t in 0..self.num_slots() as u32 {
+            if !self.alive(t) {
+                continue;
+            }
+            for f in 0..4 {
+                let (u, g) = self.neighbor(t, f);
+                let w = self.verts(u)[g];
+                if w == GHOST || self.verts(t).contains(&w) {
+                    continue;
+                }
+                if self.conflict(t, self.point(w)) {
+                    return Err(format!(
+                        "vertex {w} of tet {u} is in conflict with its neighbour tet {t}"
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
 }

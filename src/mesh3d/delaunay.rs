@@ -1,0 +1,189 @@
+//! Delaunay tetrahedralization of a point set ([`super::delaunay3d`]): validate the points,
+//! insert them in BRIO + Hilbert order into one [`Tets`] kernel, and write a [`TetMesh`].
+//!
+//! Internally vertices are numbered in insertion order, so that points inserted one after the
+//! other (close along the Hilbert curve) are also close in memory; the output maps them back to
+//! the input numbering.
+
+use super::order::brio_hilbert_order;
+use super::store::{Insertion, Tets, FACE, GHOST};
+use super::{TetMesh, NONE};
+use crate::error::{Error, InputError};
+use crate::predicates::{orient2d, orient3d};
+
+/// Coordinates beyond this magnitude could overflow the exact insphere predicate (degree 5 in
+/// coordinate differences, plus the splitting products of the exact arithmetic).
+pub(crate) const MAX_COORD: f64 = 1e50;
+
+/// Seed of the insertion-order shuffle (fixed: the output is reproducible).
+const ORDER_SEED: u64 = 0x1D3E_5A17_0000_0003;
+
+/// Checks the points: finite, not too large, at least four. Reports the first bad point.
+pub(crate) fn check_points(points: &[[f64; 3]]) -> Result<(), Error> {
+    for (i, p) in points.iter().enumerate() {
+        if !p.iter().all(|x| x.is_finite()) {
+            return Err(InputError::NonFinitePoint { point: i }.into());
+        }
+        if p.iter().any(|x| x.abs() > MAX_COORD) {
+            return Err(InputError::CoordinateTooLarge { point: i }.into());
+        }
+    }
+    if points.len() < 4 {
+        return Err(InputError::TooFewPoints {
+            count: points.len(),
+        }
+        .into());
+    }
+    Ok(())
+}
+
+/// Whether three points lie on one line (exact: all three coordinate projections are flat).
+fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
+    let xy = |p: [f64; 3]| [p[0], p[1]];
+    let yz = |p: [f64; 3]| [p[1], p[2]];
+    let zx = |p: [f64; 3]| [p[2], p[0]];
+    orient2d(xy(a), xy(b), xy(c)) == 0.0
+        && orient2d(yz(a), yz(b), yz(c)) == 0.0
+        && orient2d(zx(a), zx(b), zx(c)) == 0.0
+}
+
+/// Positions (in `pts`) of the first four points, in order, that span a tetrahedron: the first
+/// point, the next one distinct from it, the next one off their line, the next one off their
+/// plane. Errors when the points are all equal, collinear or coplanar.
+fn first_tet(pts: &[[f64; 3]], input_of: &[u32]) -> Result<[usize; 4], Error> {
+    let n = pts.len();
+    let i0 = 0;
+    let i1 = (1..n).find(|&i| pts[i] != pts[i0]).ok_or_else(|| {
+        let (a, b) = (input_of[0] as usize, input_of[1] as usize);
+        InputError::DuplicatePoint {
+            first: a.min(b),
+            second: a.max(b),
+        }
+    })?;
+    let i2 = (i1 + 1..n)
+        .find(|&i| !collinear(pts[i0], pts[i1], pts[i]))
+        .ok_or(InputError::AllCollinear)?;
+    // TODO(error.rs): an `AllCoplanar` variant would name this case exactly.
+    let i3 = (i2 + 1..n)
+        .find(|&i| orient3d(pts[i0], pts[i1], pts[i2], pts[i]) != 0.0)
+        .ok_or(InputError::AllCollinear)?;
+    Ok([i0, i1, i2, i3])
+}
+
+/// Builds the Delaunay tetrahedralization of `points` into a fresh kernel. Vertex `k` of the
+/// kernel is input point `input_of[k]`. Errors on invalid, duplicate or flat input.
+pub(crate) fn build(points: &[[f64; 3]]) -> Result<(Tets, Vec<u32>), Error> {
+    check_points(points)?;
+    let input_of = brio_hilbert_order(points, ORDER_SEED);
+    let mut tets = Tets::with_capacity(points.len());
+    for &i in &input_of {
+        tets.push_vertex(points[i as usize]);
+    }
+    let first = first_tet_in(&tets, &input_of)?;
+    tets.init(
+        first[0] as u32,
+        first[1] as u32,
+        first[2] as u32,
+        first[3] as u32,
+    );
+    let mut hint = tets.vertex_tet(first[0] as u32);
+    for v in 0..tets.num_vertices() as u32 {
+        if first.contains(&(v as usize)) {
+            continue;
+        }
+        match tets.try_insert(v, hint) {
+            Insertion::Inserted(t) => hint = t,
+            Insertion::Duplicate(w) => {
+                let (a, b) = (input_of[v as usize] as usize, input_of[w as usize] as usize);
+                return Err(InputError::DuplicatePoint {
+                    first: a.min(b),
+                    second: a.max(b),
+                }
+                .into());
+            }
+            Insertion::Lost => {
+                return Err(Error::Internal(format!(
+                    "delaunay3d: no tetrahedron in conflict with point {}",
+                    input_of[v as usize]
+                )))
+            }
+        }
+    }
+    Ok((tets, input_of))
+}
+
+/// [`first_tet`] on the kernel's (insertion-ordered) vertices.
+fn first_tet_in(tets: &Tets, input_of: &[u32]) -> Result<[usize; 4], Error> {
+    // A short prefix nearly always suffices; grow it only for (nearly) flat inputs.
+    let n = tets.num_vertices();
+    let mut len = 64.min(n);
+    loop {
+        let prefix: Vec<[f64; 3]> = (0..len as u32).map(|v| tets.point(v)).collect();
+        match first_tet(&prefix, input_of) {
+            Ok(f) => return Ok(f),
+            Err(e) if len == n => return Err(e),
+            Err(_) => len = (len * 8).min(n),
+        }
+    }
+}
+
+/// The Delaunay tetrahedralization of `points` as a [`TetMesh`] (see [`super::delaunay3d`]).
+pub(crate) fn delaunay(points: &[[f64; 3]]) -> Result<TetMesh, Error> {
+    let (tets, input_of) = build(points)?;
+    Ok(to_mesh(&tets, &input_of, points))
+}
+
+/// Writes the real tets of `tets` as a [`TetMesh`] whose vertex `input_of[k]` is kernel vertex
+/// `k`: positive tets, neighbours (`NONE` on the hull), hull faces oriented outward.
+fn to_mesh(tets: &Tets, input_of: &[u32], points: &[[f64; 3]]) -> TetMesh {
+    let slots = tets.num_slots();
+    let mut out_id = vec![NONE; slots];
+    let mut count = 0u32;
+    let mut hull = 0usize;
+    for t in 0..slots as u32 {
+        if tets.alive(t) {
+            if tets.is_ghost(t) {
+                hull += 1;
+            } else {
+                out_id[t as usize] = count;
+                count += 1;
+            }
+        }
+    }
+    let map = |v: u32| input_of[v as usize];
+    let mut out_tets = Vec::with_capacity(count as usize);
+    let mut neighbors = Vec::with_capacity(count as usize);
+    let mut faces = Vec::with_capacity(hull);
+    for t in 0..slots as u32 {
+        if !tets.alive(t) {
+            continue;
+        }
+        let v = tets.verts(t);
+        if let Some(k) = v.iter().position(|&x| x == GHOST) {
+            // The real tet across the hull triangle lists it outward (counter-clockwise seen
+            // from outside the hull).
+            let (r, f) = tets.neighbor(t, k);
+            let rv = tets.verts(r);
+            faces.push(FACE[f].map(|i| map(rv[i])));
+            continue;
+        }
+        out_tets.push(v.map(map));
+        neighbors.push([0, 1, 2, 3].map(|f| out_id[tets.neighbor(t, f).0 as usize]));
+    }
+    drop(out_id);
+    let n = points.len();
+    TetMesh {
+        vertices: points.to_vec(),
+        vertex_markers: vec![0; n],
+        num_input_vertices: n,
+        tets: out_tets,
+        neighbors,
+        tet_attributes: Vec::new(),
+        face_markers: vec![0; faces.len()],
+        faces,
+        edges: Vec::new(),
+        edge_markers: Vec::new(),
+        complete: true,
+        steiner_points: 0,
+    }
+}

@@ -1,0 +1,261 @@
+//! The input features of a PLC as the mesher tracks them: input edges with their 1D meshes
+//! (subsegments), facets with their outlines, and the lookup tables from mesh simplices to the
+//! features they belong to.
+
+use std::collections::HashMap;
+
+use super::facet_mesh::Outline;
+use crate::input3d::Plc;
+use crate::predicates::orient2d;
+
+/// Key of an undirected edge.
+#[inline]
+pub(crate) fn ekey(a: u32, b: u32) -> u64 {
+    let (lo, hi) = if a < b { (a, b) } else { (b, a) };
+    ((lo as u64) << 32) | hi as u64
+}
+
+/// Key of an unordered triangle.
+#[inline]
+pub(crate) fn fkey(v: [u32; 3]) -> [u32; 3] {
+    let mut k = v;
+    k.sort_unstable();
+    k
+}
+
+/// One input edge: a free segment or a facet loop edge (shared by every facet it bounds).
+#[derive(Debug, Clone)]
+pub(crate) struct InputEdge {
+    /// Its endpoints (input vertices).
+    pub ends: [u32; 2],
+    /// Boundary marker (the segment's, or the first facet's for loop edges).
+    pub marker: i32,
+    /// The facets whose meshes contain this edge.
+    pub facets: Vec<u32>,
+}
+
+/// One input facet: marker, projection axis and outline.
+#[derive(Debug, Clone)]
+pub(crate) struct FacetInfo {
+    /// Boundary marker.
+    pub marker: i32,
+    /// The coordinate dropped by the facet's projection (largest normal component).
+    pub axis: usize,
+    /// Loops in projected coordinates.
+    pub outline: Outline,
+    /// Input vertices of the facet.
+    pub vertices: Vec<u32>,
+}
+
+/// All features of the PLC.
+pub(crate) struct Features {
+    /// Input edges.
+    pub edges: Vec<InputEdge>,
+    /// Facets.
+    pub facets: Vec<FacetInfo>,
+    /// Current subsegments: edge key → input edge.
+    pub subsegs: HashMap<u64, u32>,
+    /// Subsegment partners of each vertex on an input edge.
+    pub seg_adj: HashMap<u32, Vec<u32>>,
+    /// Current subfaces: sorted triangle → facet.
+    pub subfaces: HashMap<[u32; 3], u32>,
+    /// Facets containing each feature vertex (input vertices of facets and Steiner points on
+    /// facets or input edges).
+    pub vert_facets: HashMap<u32, Vec<u32>>,
+    /// Per vertex: lies on a segment or facet (so simplices made only of such vertices may be
+    /// features). A cheap filter before hash lookups.
+    pub on_feature: Vec<bool>,
+}
+
+/// The axis of the largest normal component of triangle `abc`, decided from the exact signs of
+/// the three projected orientations: the largest magnitude is non-zero for non-collinear points.
+pub(crate) fn dominant_axis(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Option<usize> {
+    let mut best = (0.0f64, None);
+    for axis in 0..3 {
+        let o = orient2d(proj(a, axis), proj(b, axis), proj(c, axis)).abs();
+        if o > best.0 {
+            best = (o, Some(axis));
+        }
+    }
+    best.1
+}
+
+/// The projection that drops coordinate `axis` (cyclic order keeps orientation consistent).
+#[inline]
+pub(crate) fn proj(p: [f64; 3], axis: usize) -> [f64; 2] {
+    match axis {
+        0 => [p[1], p[2]],
+        1 => [p[2], p[0]],
+        _ => [p[0], p[1]],
+    }
+}
+
+impl Features {
+    /// Collects input edges (free segments and facet loop edges, each once) and facets.
+    pub fn new(plc: &Plc) -> Result<Features, String> {
+        let n = plc.points.len();
+        let mut edges: Vec<InputEdge> = Vec::new();
+        let mut subsegs: HashMap<u64, u32> = HashMap::new();
+        let mut add_edge = |a: u32, b: u32, marker: i32, facet: Option<u32>| {
+            if a == b {
+                return;
+            }
+            let k = ekey(a, b);
+            let id = *subsegs.entry(k).or_insert_with(|| {
+                edges.push(InputEdge {
+                    ends: [a, b],
+                    marker,
+                    facets: Vec::new(),
+                });
+                (edges.len() - 1) as u32
+            });
+            if let Some(f) = facet {
+                let e = &mut edges[id as usize];
+                if !e.facets.contains(&f) {
+                    e.facets.push(f);
+                }
+            }
+        };
+        for (i, s) in plc.segments.iter().enumerate() {
+            let m = plc.segment_markers.get(i).copied().unwrap_or(0);
+            add_edge(s[0], s[1], m, None);
+        }
+        let mut facets = Vec::with_capacity(plc.facets.len());
+        let mut vert_facets: HashMap<u32, Vec<u32>> = HashMap::new();
+        for (fi, f) in plc.facets.iter().enumerate() {
+            let fid = fi as u32;
+            let mut verts: Vec<u32> = f.polygons.iter().flatten().copied().collect();
+            verts.sort_unstable();
+            verts.dedup();
+            // A non-collinear triple gives the plane's dominant axis.
+            let mut axis = None;
+            if let Some(&a) = verts.first() {
+                let pa = plc.points[a as usize];
+                'outer: for (j, &b) in verts.iter().enumerate().skip(1) {
+                    let pb = plc.points[b as usize];
+                    for &c in verts.iter().skip(j + 1) {
+                        if let Some(ax) = dominant_axis(pa, pb, plc.points[c as usize]) {
+                            axis = Some(ax);
+                            break 'outer;
+                        }
+                    }
+                }
+            }
+            let Some(axis) = axis else {
+                return Err(format!("facet {fi} is degenerate (its vertices are collinear)"));
+            };
+            let mut loops = Vec::new();
+            for poly in &f.polygons {
+                match poly.len() {
+                    0 => {}
+                    1 => {}
+                    2 => add_edge(poly[0], poly[1], f.marker, Some(fid)),
+                    k => {
+                        for i in 0..k {
+                            add_edge(poly[i], poly[(i + 1) % k], f.marker, Some(fid));
+                        }
+                        loops.push(
+                            poly.iter()
+                                .map(|&v| proj(plc.points[v as usize], axis))
+                                .collect::<Vec<_>>(),
+                        );
+                    }
+                }
+            }
+            let convex = loops.len() == 1 && is_convex(&loops[0]);
+            for &v in &verts {
+                vert_facets.entry(v).or_default().push(fid);
+            }
+            facets.push(FacetInfo {
+                marker: f.marker,
+                axis,
+                outline: Outline { loops, convex },
+                vertices: verts,
+            });
+        }
+        let mut on_feature = vec![false; n];
+        let mut seg_adj: HashMap<u32, Vec<u32>> = HashMap::new();
+        for e in &edges {
+            let [a, b] = e.ends;
+            on_feature[a as usize] = true;
+            on_feature[b as usize] = true;
+            seg_adj.entry(a).or_default().push(b);
+            seg_adj.entry(b).or_default().push(a);
+        }
+        for &v in vert_facets.keys() {
+            on_feature[v as usize] = true;
+        }
+        Ok(Features {
+            edges,
+            facets,
+            subsegs,
+            seg_adj,
+            subfaces: HashMap::new(),
+            vert_facets,
+            on_feature,
+        })
+    }
+
+    /// Replaces subsegment `ab` of input edge `e` by `am` and `mb`.
+    pub fn split_subseg(&mut self, a: u32, b: u32, m: u32, e: u32) {
+        self.subsegs.remove(&ekey(a, b));
+        self.subsegs.insert(ekey(a, m), e);
+        self.subsegs.insert(ekey(m, b), e);
+        for (x, y) in [(a, b), (b, a)] {
+            if let Some(l) = self.seg_adj.get_mut(&x) {
+                if let Some(s) = l.iter_mut().find(|s| **s == y) {
+                    *s = m;
+                }
+            }
+        }
+        self.seg_adj.insert(m, vec![a, b]);
+        let fs = self.edges[e as usize].facets.clone();
+        self.vert_facets.insert(m, fs);
+        self.mark_feature(m);
+    }
+
+    /// Marks vertex `v` as lying on a feature.
+    pub fn mark_feature(&mut self, v: u32) {
+        let i = v as usize;
+        if self.on_feature.len() <= i {
+            self.on_feature.resize(i + 1, false);
+        }
+        self.on_feature[i] = true;
+    }
+
+    /// Whether `v` lies on a feature.
+    #[inline]
+    pub fn is_feature(&self, v: u32) -> bool {
+        self.on_feature.get(v as usize).copied().unwrap_or(false)
+    }
+
+    /// The input edge of subsegment `ab`, if it is one.
+    #[inline]
+    pub fn subseg(&self, a: u32, b: u32) -> Option<u32> {
+        if !self.is_feature(a) || !self.is_feature(b) {
+            return None;
+        }
+        self.subsegs.get(&ekey(a, b)).copied()
+    }
+
+    /// The facet of subface `abc`, if it is one.
+    #[inline]
+    pub fn subface(&self, v: [u32; 3]) -> Option<u32> {
+        if !v.iter().all(|&x| self.is_feature(x)) {
+            return None;
+        }
+        self.subfaces.get(&fkey(v)).copied()
+    }
+}
+
+/// A loop is convex when no two consecutive turns have opposite signs (collinear runs allowed).
+fn is_convex(lp: &[[f64; 2]]) -> bool {
+    let n = lp.len();
+    let (mut pos, mut neg) = (false, false);
+    for i in 0..n {
+        let o = orient2d(lp[i], lp[(i + 1) % n], lp[(i + 2) % n]);
+        pos |= o > 0.0;
+        neg |= o < 0.0;
+    }
+    !(pos && neg)
+}

@@ -1,0 +1,697 @@
+//! PLC meshing (paper §4): the 3D Delaunay mesh, one 1D mesh per input edge and one 2D mesh
+//! per facet, driven by a work queue in the order of Definition 4.1.
+//!
+//! * Points first: every point is inserted into the meshes of the features containing it,
+//!   lowest dimension first, then into the 3D mesh (§6), as soon as it is made.
+//! * Then simplices, lowest dimension first: subsegments, then subfaces, then tetrahedra.
+//!   A queued simplex is re-verified when it is taken (it may be gone or already fine), unless
+//!   it was queued because a refused point encroaches it (`force`).
+//! * The 3D mesh is always the Delaunay tetrahedralization of its vertices (no constraints):
+//!   features appear in it because they are refined until they do (induction hypotheses 2, 3).
+//! * Exterior, holes and regions are found by flooding across non-subfaces once every feature
+//!   is present; quality refinement then treats only tetrahedra inside the domain.
+
+use std::collections::VecDeque;
+
+use super::facet_mesh::{FacetInsertError, FacetMesh};
+use super::features::{ekey, fkey, Features};
+use super::store::{Located, Tets, GHOST};
+use super::{Options3, TetMesh, NONE};
+use crate::error::Error;
+use crate::geometry::{tet_circumcenter, tet_radius_edge, tet_volume, tri_circumcenter3};
+use crate::input3d::Plc;
+use crate::predicates::{in_diametral_ball_seg3, in_diametral_ball_tri, orient3d};
+
+/// Region id of tetrahedra outside the domain (exterior or holes).
+const OUTSIDE: u32 = u32::MAX;
+
+/// A simplex a refused point encroaches (to be split before retrying).
+#[derive(Debug, Clone, Copy)]
+enum Enc {
+    Seg([u32; 2]),
+    Face([u32; 3], u32),
+}
+
+struct Mesher<'a> {
+    opts: &'a Options3,
+    pts: Vec<[f64; 3]>,
+    tets: Tets,
+    feat: Features,
+    fmesh: Vec<FacetMesh>,
+    seg_q: VecDeque<([u32; 2], bool)>,
+    face_q: VecDeque<([u32; 3], u32, bool)>,
+    tet_q: VecDeque<(u32, [u32; 4])>,
+    /// Region per tetrahedron slot once classified (`OUTSIDE`, or 0 = no region, r + 1).
+    region: Vec<u32>,
+    classified: bool,
+    region_max_vol: Vec<Option<f64>>,
+    hint: u32,
+    num_input: usize,
+    steiner: u64,
+    complete: bool,
+    /// Scratch: (sorted boundary face, region of the cavity tet behind it).
+    face_region: Vec<([u32; 3], u32)>,
+}
+
+/// Meshes a PLC (already checked).
+pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
+    let feat = Features::new(plc).map_err(Error::Internal)?;
+    let n = plc.points.len();
+    let mut tets = Tets::with_capacity(n * 4 + 64);
+    for &p in &plc.points {
+        tets.push_vertex(p);
+    }
+    let fmesh = feat
+        .facets
+        .iter()
+        .map(|f| FacetMesh::new(f.axis, f.outline.clone()))
+        .collect();
+    let mut m = Mesher {
+        opts,
+        pts: plc.points.clone(),
+        tets,
+        feat,
+        fmesh,
+        seg_q: VecDeque::new(),
+        face_q: VecDeque::new(),
+        tet_q: VecDeque::new(),
+        region: Vec::new(),
+        classified: false,
+        region_max_vol: plc.regions.iter().map(|r| r.max_volume).collect(),
+        hint: NONE,
+        num_input: n,
+        steiner: 0,
+        complete: true,
+        face_region: Vec::new(),
+    };
+    m.insert_input_points()?;
+    // Every subsegment and subface starts on the queue; taking one checks it.
+    let mut keys: Vec<u64> = m.feat.subsegs.keys().copied().collect();
+    keys.sort_unstable();
+    for k in keys {
+        m.seg_q
+            .push_back(([(k >> 32) as u32, k as u32], false));
+    }
+    m.run()?;
+    m.classify(plc)?;
+    if m.wants_quality() {
+        for t in 0..m.tets.num_slots() as u32 {
+            m.maybe_queue_tet(t);
+        }
+        m.run()?;
+        // Late facet splits may have moved region borders: classify again for the output.
+        m.classify(plc)?;
+    }
+    m.output(plc)
+}
+
+impl Mesher<'_> {
+    fn wants_quality(&self) -> bool {
+        self.opts.radius_edge.is_some()
+            || self.opts.max_volume.is_some()
+            || self.opts.sizing.is_some()
+            || (self.opts.region_max_volume && self.region_max_vol.iter().any(|r| r.is_some()))
+    }
+
+    /// Inserts the input points into the facet meshes and the 3D mesh in one global order.
+    fn insert_input_points(&mut self) -> Result<(), Error> {
+        let order = super::order::brio_hilbert_order(&self.pts, 0x1d3e_5a11);
+        // The 3D kernel needs a first tetrahedron: four non-coplanar points early in the order.
+        let mut first = vec![order[0]];
+        for &v in &order[1..] {
+            let ok = match first.len() {
+                1 => self.pts[v as usize] != self.pts[first[0] as usize],
+                2 => !collinear(
+                    self.pts[first[0] as usize],
+                    self.pts[first[1] as usize],
+                    self.pts[v as usize],
+                ),
+                3 => {
+                    orient3d(
+                        self.pts[first[0] as usize],
+                        self.pts[first[1] as usize],
+                        self.pts[first[2] as usize],
+                        self.pts[v as usize],
+                    ) != 0.0
+                }
+                _ => false,
+            };
+            if ok {
+                first.push(v);
+                if first.len() == 4 {
+                    break;
+                }
+            }
+        }
+        if first.len() < 4 {
+            return Err(Error::Input(crate::InputError::AllCollinear));
+        }
+        // Facet meshes: each facet takes its input vertices in the global order.
+        let mut rank = vec![0u32; self.pts.len()];
+        for (r, &v) in order.iter().enumerate() {
+            rank[v as usize] = r as u32;
+        }
+        for f in 0..self.fmesh.len() {
+            let mut vs = self.feat.facets[f].vertices.clone();
+            vs.sort_by_key(|&v| rank[v as usize]);
+            for v in vs {
+                self.facet_insert(f as u32, v, false)
+                    .map_err(|e| Error::Internal(format!("facet {f}: {e:?}")))?;
+            }
+        }
+        self.tets.init(first[0], first[1], first[2], first[3]);
+        self.hint = self.tets.vertex_tet(first[0]);
+        for &v in &order {
+            if first.contains(&v) {
+                continue;
+            }
+            self.insert3d(v, false).map_err(|_| {
+                Error::Internal(format!("input point {v} refused in forced insertion"))
+            })?;
+        }
+        Ok(())
+    }
+
+    /// Inserts vertex `v` into facet `f`'s mesh and books the subface changes.
+    fn facet_insert(&mut self, f: u32, v: u32, provisional: bool) -> Result<(), FacetInsertError> {
+        let feat = &self.feat;
+        let is_sub = |a: u32, b: u32| feat.subseg(a, b).is_some();
+        let ch = self.fmesh[f as usize].insert(v, &self.pts, provisional, &is_sub)?;
+        for t in ch.removed {
+            self.feat.subfaces.remove(&fkey(t));
+        }
+        for t in ch.added {
+            self.feat.subfaces.insert(fkey(t), f);
+            self.face_q.push_back((t, f, false));
+        }
+        for s in ch.encroached {
+            self.seg_q.push_back((s, false));
+        }
+        Ok(())
+    }
+
+    /// Inserts vertex `v` into the 3D mesh. Provisional insertion is refused (nothing changes)
+    /// when `v` encroaches a subsegment or subface, which are returned.
+    fn insert3d(&mut self, v: u32, provisional: bool) -> Result<(), Vec<Enc>> {
+        let p = self.pts[v as usize];
+        let start = match self.tets.locate(p, self.hint) {
+            Located::InTet(t) => t,
+            Located::Vertex(_) => return Err(Vec::new()),
+        };
+        if !self.tets.find_cavity(p, start) {
+            self.tets.cancel_cavity();
+            return Err(Vec::new());
+        }
+        let mut enc: Vec<Enc> = Vec::new();
+        let mut touched_segs: Vec<[u32; 2]> = Vec::new();
+        let mut touched_faces: Vec<([u32; 3], u32)> = Vec::new();
+        self.face_region.clear();
+        for &t in self.tets.cavity() {
+            let vs = self.tets.verts(t);
+            if vs.contains(&GHOST) {
+                // Hull faces of ghosts are seen from the real tet on the other side.
+                for f in 0..4 {
+                    let (n, _) = self.tets.neighbor(t, f);
+                    if !self.tets.in_cavity(n) {
+                        self.face_region.push((fkey(face_of(vs, f)), OUTSIDE));
+                    }
+                }
+                continue;
+            }
+            let reg = self.region_of(t);
+            for f in 0..4 {
+                let fv = face_of(vs, f);
+                let (n, _) = self.tets.neighbor(t, f);
+                let crossed = self.tets.in_cavity(n);
+                if !crossed {
+                    self.face_region.push((fkey(fv), reg));
+                }
+                if let Some(fid) = self.feat.subface(fv) {
+                    let [a, b, c] = fv.map(|x| self.pts[x as usize]);
+                    if crossed || in_diametral_ball_tri(a, b, c, p) {
+                        enc.push(Enc::Face(fv, fid));
+                    }
+                    touched_faces.push((fv, fid));
+                }
+            }
+            for (i, j) in EDGES {
+                let (a, b) = (vs[i], vs[j]);
+                if self.feat.subseg(a, b).is_some() {
+                    if in_diametral_ball_seg3(self.pts[a as usize], self.pts[b as usize], p) {
+                        enc.push(Enc::Seg([a, b]));
+                    }
+                    touched_segs.push([a, b]);
+                }
+            }
+        }
+        if provisional && !enc.is_empty() {
+            self.tets.cancel_cavity();
+            return Err(enc);
+        }
+        self.face_region.sort_unstable();
+        // Steiner vertices enter the kernel only when they are really inserted.
+        while self.tets.num_vertices() <= v as usize {
+            let q = self.pts[self.tets.num_vertices()];
+            self.tets.push_vertex(q);
+        }
+        let new = self.tets.commit_cavity(v).to_vec();
+        if let Some(&t) = new.first() {
+            self.hint = t;
+        }
+        for s in touched_segs {
+            self.seg_q.push_back((s, false));
+        }
+        for (f, fid) in touched_faces {
+            self.face_q.push_back((f, fid, false));
+        }
+        if self.classified {
+            for &t in &new {
+                let vs = self.tets.verts(t);
+                let k = (0..4).find(|&k| vs[k] == v).unwrap_or(0);
+                let key = fkey(face_of(vs, k));
+                let reg = match self
+                    .face_region
+                    .binary_search_by(|e| e.0.cmp(&key))
+                {
+                    Ok(i) => self.face_region[i].1,
+                    Err(_) => OUTSIDE,
+                };
+                let reg = if vs.contains(&GHOST) { OUTSIDE } else { reg };
+                self.set_region(t, reg);
+                self.maybe_queue_tet(t);
+            }
+        }
+        Ok(())
+    }
+
+    fn region_of(&self, t: u32) -> u32 {
+        self.region.get(t as usize).copied().unwrap_or(OUTSIDE)
+    }
+
+    fn set_region(&mut self, t: u32, r: u32) {
+        let i = t as usize;
+        if self.region.len() <= i {
+            self.region.resize(i + 1, OUTSIDE);
+        }
+        self.region[i] = r;
+    }
+
+    /// Makes a new vertex (not yet in any mesh).
+    fn new_vertex(&mut self, p: [f64; 3]) -> Result<u32, Error> {
+        if self.pts.len() >= (u32::MAX - 16) as usize {
+            return Err(Error::Internal("too many vertices".into()));
+        }
+        self.pts.push(p);
+        Ok((self.pts.len() - 1) as u32)
+    }
+
+    fn cap_reached(&self) -> bool {
+        self.opts.max_steiner.is_some_and(|c| self.steiner >= c)
+    }
+
+    /// The work loop: subsegments, then subfaces, then tetrahedra (Definition 4.1).
+    fn run(&mut self) -> Result<(), Error> {
+        let budget = 1u64 << 40;
+        for _ in 0..budget {
+            if let Some((s, force)) = self.seg_q.pop_front() {
+                self.take_subseg(s, force)?;
+            } else if let Some((f, fid, force)) = self.face_q.pop_front() {
+                self.take_subface(f, fid, force)?;
+            } else if let Some((t, vs)) = self.tet_q.pop_front() {
+                if self.cap_reached() {
+                    self.complete = false;
+                    self.tet_q.clear();
+                    continue;
+                }
+                self.take_tet(t, vs)?;
+            } else {
+                return Ok(());
+            }
+        }
+        Err(Error::Internal("work loop budget exhausted".into()))
+    }
+
+    /// Whether subsegment `ab` is missing from the 3D mesh or a facet mesh, or encroached.
+    fn subseg_needs_split(&self, a: u32, b: u32, e: u32) -> bool {
+        let Some(t0) = self.tets.find_edge(a, b) else {
+            return true;
+        };
+        for &f in &self.feat.edges[e as usize].facets {
+            let fm = &self.fmesh[f as usize];
+            if fm.started() && !fm.has_edge(a, b) {
+                return true;
+            }
+        }
+        let _ = t0;
+        // The edge's link: a vertex strictly inside the diametral ball of a Delaunay edge shows
+        // up among the tetrahedra around it.
+        let mut star = Vec::new();
+        self.tets.star(a, &mut star);
+        let (pa, pb) = (self.pts[a as usize], self.pts[b as usize]);
+        for t in star {
+            let vs = self.tets.verts(t);
+            if !vs.contains(&b) {
+                continue;
+            }
+            for x in vs {
+                if x != a && x != b && x != GHOST && in_diametral_ball_seg3(pa, pb, self.pts[x as usize])
+                {
+                    return true;
+                }
+            }
+        }
+        false
+    }
+
+    fn take_subseg(&mut self, s: [u32; 2], force: bool) -> Result<(), Error> {
+        let [a, b] = s;
+        let Some(e) = self.feat.subseg(a, b) else {
+            return Ok(());
+        };
+        if !force && !self.subseg_needs_split(a, b, e) {
+            return Ok(());
+        }
+        let (pa, pb) = (self.pts[a as usize], self.pts[b as usize]);
+        let mid = [0, 1, 2].map(|k| 0.5 * (pa[k] + pb[k]));
+        if mid == pa || mid == pb {
+            return Err(Error::Internal(format!(
+                "subsegment {a}-{b} is too short to split (precision exhausted)"
+            )));
+        }
+        let m = self.new_vertex(mid)?;
+        self.steiner += 1;
+        self.feat.split_subseg(a, b, m, e);
+        self.seg_q.push_back(([a, m], false));
+        self.seg_q.push_back(([m, b], false));
+        let facets = self.feat.edges[e as usize].facets.clone();
+        for f in facets {
+            self.facet_insert(f, m, false)
+                .map_err(|err| Error::Internal(format!("segment split point in facet {f}: {err:?}")))?;
+        }
+        self.insert3d(m, false)
+            .map_err(|_| Error::Internal(format!("segment split point {m} refused")))
+    }
+
+    /// Whether subface `abc` is missing from the 3D mesh or encroached.
+    fn subface_needs_split(&self, v: [u32; 3]) -> bool {
+        let Some(h) = self.tets.find_face(v[0], v[1], v[2]) else {
+            return true;
+        };
+        let [a, b, c] = v.map(|x| self.pts[x as usize]);
+        let (t, f) = (h / 4, (h % 4) as usize);
+        let (n, nf) = self.tets.neighbor(t, f);
+        for (tt, ff) in [(t, f), (n, nf)] {
+            let x = self.tets.verts(tt)[ff];
+            if x != GHOST && in_diametral_ball_tri(a, b, c, self.pts[x as usize]) {
+                return true;
+            }
+        }
+        false
+    }
+
+    fn take_subface(&mut self, v: [u32; 3], fid: u32, force: bool) -> Result<(), Error> {
+        if self.feat.subface(v) != Some(fid) {
+            return Ok(());
+        }
+        if !force && !self.subface_needs_split(v) {
+            return Ok(());
+        }
+        let [a, b, c] = v.map(|x| self.pts[x as usize]);
+        let Some(cc) = tri_circumcenter3(a, b, c) else {
+            return Err(Error::Internal(format!("degenerate subface {v:?}")));
+        };
+        let m = self.new_vertex(cc)?;
+        match self.facet_insert(fid, m, true) {
+            Ok(()) => {}
+            Err(FacetInsertError::Encroaches(segs)) => {
+                self.pts.pop();
+                for s in segs {
+                    self.seg_q.push_front((s, true));
+                }
+                self.face_q.push_back((v, fid, force));
+                return Ok(());
+            }
+            Err(e) => {
+                return Err(Error::Internal(format!(
+                    "circumcenter of subface {v:?} in facet {fid}: {e:?}"
+                )))
+            }
+        }
+        self.steiner += 1;
+        self.feat.mark_feature(m);
+        self.feat.vert_facets.insert(m, vec![fid]);
+        self.insert3d(m, false)
+            .map_err(|_| Error::Internal(format!("facet point {m} refused")))
+    }
+
+    fn is_bad(&self, t: u32) -> bool {
+        let vs = self.tets.verts(t);
+        let c = vs.map(|x| self.pts[x as usize]);
+        if let Some(rho) = self.opts.radius_edge {
+            if tet_radius_edge(c) > rho {
+                return true;
+            }
+        }
+        let vol = tet_volume(c).abs();
+        if self.opts.max_volume.is_some_and(|mv| vol > mv) {
+            return true;
+        }
+        if self.opts.region_max_volume {
+            let r = self.region_of(t);
+            if r != 0 && r != OUTSIDE {
+                if let Some(Some(mv)) = self.region_max_vol.get((r - 1) as usize) {
+                    if vol > *mv {
+                        return true;
+                    }
+                }
+            }
+        }
+        if let Some(f) = &self.opts.sizing {
+            if f(c[0], c[1], c[2], c[3], vol) {
+                return true;
+            }
+        }
+        false
+    }
+
+    fn maybe_queue_tet(&mut self, t: u32) {
+        if !self.tets.alive(t) || self.tets.is_ghost(t) || self.region_of(t) == OUTSIDE {
+            return;
+        }
+        if self.is_bad(t) {
+            self.tet_q.push_back((t, self.tets.verts(t)));
+        }
+    }
+
+    fn take_tet(&mut self, t: u32, vs: [u32; 4]) -> Result<(), Error> {
+        if !self.tets.alive(t) || self.tets.verts(t) != vs || self.region_of(t) == OUTSIDE {
+            return Ok(());
+        }
+        let c = vs.map(|x| self.pts[x as usize]);
+        let Some(cc) = tet_circumcenter(c) else {
+            return Ok(());
+        };
+        let m = self.new_vertex(cc)?;
+        match self.insert3d(m, true) {
+            Ok(()) => {
+                self.steiner += 1;
+                if self.opts.verbose && self.steiner % 100_000 == 0 {
+                    eprintln!("idmesh: {} Steiner points", self.steiner);
+                }
+                Ok(())
+            }
+            Err(enc) => {
+                self.pts.pop();
+                if enc.is_empty() {
+                    return Ok(()); // the circumcenter coincides with a vertex
+                }
+                for e in enc {
+                    match e {
+                        Enc::Seg(s) => self.seg_q.push_back((s, true)),
+                        Enc::Face(f, fid) => self.face_q.push_back((f, fid, true)),
+                    }
+                }
+                self.tet_q.push_back((t, vs));
+                Ok(())
+            }
+        }
+    }
+
+    /// Floods regions: outside from the ghosts and hole seeds, then region seeds; the rest is
+    /// region 0 (inside, no attribute). Floods never cross a subface.
+    fn classify(&mut self, plc: &Plc) -> Result<(), Error> {
+        let ns = self.tets.num_slots();
+        self.region = vec![0; ns];
+        let mut seen = vec![false; ns];
+        let mut stack = Vec::new();
+        let ghosts: Vec<u32> = (0..ns as u32)
+            .filter(|&t| self.tets.alive(t) && self.tets.is_ghost(t))
+            .collect();
+        self.flood(&ghosts, OUTSIDE, &mut seen, &mut stack);
+        for (i, h) in plc.holes.iter().enumerate() {
+            let t = self.seed_tet(*h).ok_or_else(|| {
+                Error::Input(crate::InputError::HoleOutsideDomain { hole: i })
+            })?;
+            self.flood(&[t], OUTSIDE, &mut seen, &mut stack);
+        }
+        for (i, r) in plc.regions.iter().enumerate() {
+            if let Some(t) = self.seed_tet(r.point) {
+                if !seen[t as usize] {
+                    self.flood(&[t], i as u32 + 1, &mut seen, &mut stack);
+                }
+            } else {
+                return Err(Error::Input(crate::InputError::RegionOutsideDomain { region: i }));
+            }
+        }
+        self.classified = true;
+        if !(0..ns as u32).any(|t| self.tets.alive(t) && self.region[t as usize] != OUTSIDE) {
+            return Err(Error::Internal(
+                "the facets enclose no volume (is the surface closed?)".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    fn seed_tet(&self, p: [f64; 3]) -> Option<u32> {
+        match self.tets.locate(p, self.hint) {
+            Located::InTet(t) if !self.tets.is_ghost(t) => Some(t),
+            _ => None,
+        }
+    }
+
+    fn flood(&mut self, seeds: &[u32], reg: u32, seen: &mut [bool], stack: &mut Vec<u32>) {
+        stack.clear();
+        for &s in seeds {
+            if !seen[s as usize] {
+                seen[s as usize] = true;
+                stack.push(s);
+            }
+        }
+        while let Some(t) = stack.pop() {
+            self.region[t as usize] = reg;
+            let vs = self.tets.verts(t);
+            for f in 0..4 {
+                let (n, _) = self.tets.neighbor(t, f);
+                if seen[n as usize] {
+                    continue;
+                }
+                let fv = face_of(vs, f);
+                if !fv.contains(&GHOST) && self.feat.subface(fv).is_some() {
+                    continue;
+                }
+                seen[n as usize] = true;
+                stack.push(n);
+            }
+        }
+    }
+
+    fn output(&self, plc: &Plc) -> Result<TetMesh, Error> {
+        let ns = self.tets.num_slots();
+        let mut index = vec![NONE; ns];
+        let mut tets = Vec::new();
+        let mut slots = Vec::new();
+        for t in 0..ns as u32 {
+            if self.tets.alive(t) && !self.tets.is_ghost(t) && self.region[t as usize] != OUTSIDE {
+                index[t as usize] = tets.len() as u32;
+                let mut v = self.tets.verts(t);
+                let c = v.map(|x| self.pts[x as usize]);
+                // Shewchuk's orient3d is positive for det[b-a, c-a, d-a] < 0.
+                if orient3d(c[0], c[1], c[2], c[3]) > 0.0 {
+                    v.swap(0, 1);
+                }
+                tets.push(v);
+                slots.push(t);
+            }
+        }
+        let mut neighbors = Vec::with_capacity(tets.len());
+        for (i, &t) in slots.iter().enumerate() {
+            let mut nb = [NONE; 4];
+            for (k, &x) in tets[i].iter().enumerate() {
+                // The face opposite x in the output order is the kernel face opposite x.
+                let vs = self.tets.verts(t);
+                let f = (0..4).find(|&f| vs[f] == x).unwrap_or(0);
+                let (n, _) = self.tets.neighbor(t, f);
+                nb[k] = index[n as usize];
+            }
+            neighbors.push(nb);
+        }
+        let tet_attributes = if self.opts.region_attributes {
+            slots
+                .iter()
+                .map(|&t| {
+                    let r = self.region[t as usize];
+                    if r == 0 {
+                        0.0
+                    } else {
+                        plc.regions[(r - 1) as usize].attribute
+                    }
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let mut faces: Vec<([u32; 3], u32)> =
+            self.feat.subfaces.iter().map(|(k, &f)| (*k, f)).collect();
+        faces.sort_unstable();
+        let face_markers = faces
+            .iter()
+            .map(|&(_, f)| self.feat.facets[f as usize].marker)
+            .collect();
+        let faces: Vec<[u32; 3]> = faces.into_iter().map(|(k, _)| k).collect();
+        let mut edges: Vec<(u64, u32)> = self.feat.subsegs.iter().map(|(k, &e)| (*k, e)).collect();
+        edges.sort_unstable();
+        let edge_markers = edges
+            .iter()
+            .map(|&(_, e)| self.feat.edges[e as usize].marker)
+            .collect();
+        let edges: Vec<[u32; 2]> = edges
+            .into_iter()
+            .map(|(k, _)| [(k >> 32) as u32, k as u32])
+            .collect();
+        let mut vertex_markers = vec![0i32; self.pts.len()];
+        for (i, m) in plc.point_markers.iter().enumerate() {
+            vertex_markers[i] = *m;
+        }
+        for (v, fs) in &self.feat.vert_facets {
+            if (*v as usize) >= self.num_input && vertex_markers[*v as usize] == 0 {
+                if let Some(&f) = fs.first() {
+                    vertex_markers[*v as usize] = self.feat.facets[f as usize].marker;
+                }
+            }
+        }
+        let mesh = TetMesh {
+            vertices: self.pts.clone(),
+            vertex_markers,
+            num_input_vertices: self.num_input,
+            tets,
+            neighbors,
+            tet_attributes,
+            faces,
+            face_markers,
+            edges,
+            edge_markers,
+            complete: self.complete,
+            steiner_points: self.pts.len() - self.num_input,
+        };
+        let _ = ekey;
+        Ok(mesh)
+    }
+}
+
+/// The six edges of a tetrahedron as corner pairs.
+const EDGES: [(usize, usize); 6] = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
+
+/// The face of a tetrahedron opposite corner `f`.
+#[inline]
+fn face_of(v: [u32; 4], f: usize) -> [u32; 3] {
+    match f {
+        0 => [v[1], v[2], v[3]],
+        1 => [v[0], v[2], v[3]],
+        2 => [v[0], v[1], v[3]],
+        _ => [v[0], v[1], v[2]],
+    }
+}
+
+fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
+    super::features::dominant_axis(a, b, c).is_none()
+}

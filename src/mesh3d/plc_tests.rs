@@ -1,0 +1,174 @@
+//! Unit tests of PLC meshing: closed boxes, holes, shared facets, non-convex facets.
+
+use super::*;
+use crate::input3d::{Facet, Plc};
+use crate::predicates::orient3d;
+use std::collections::{HashMap, HashSet};
+
+/// An axis-aligned box as a PLC: 8 points, 6 quadrilateral facets.
+pub(crate) fn box_plc(lo: [f64; 3], hi: [f64; 3]) -> Plc {
+    let mut plc = Plc::default();
+    add_box(&mut plc, lo, hi, 1);
+    plc
+}
+
+pub(crate) fn add_box(plc: &mut Plc, lo: [f64; 3], hi: [f64; 3], marker: i32) {
+    let o = plc.points.len() as u32;
+    for i in 0..8 {
+        plc.points.push([
+            if i & 1 == 0 { lo[0] } else { hi[0] },
+            if i & 2 == 0 { lo[1] } else { hi[1] },
+            if i & 4 == 0 { lo[2] } else { hi[2] },
+        ]);
+    }
+    let quads = [
+        [0, 1, 3, 2],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 3, 7, 6],
+        [0, 2, 6, 4],
+        [1, 3, 7, 5],
+    ];
+    for q in quads {
+        plc.facets.push(Facet {
+            polygons: vec![q.iter().map(|&i| o + i).collect()],
+            holes: vec![],
+            marker,
+        });
+    }
+}
+
+/// Checks the invariants every PLC mesh must meet, exactly where it matters.
+pub(crate) fn check_mesh(plc: &Plc, mesh: &TetMesh) {
+    mesh.validate().unwrap();
+    // Orientation (TetGen's positive) — exact.
+    for (t, v) in mesh.tets.iter().enumerate() {
+        let c = v.map(|x| mesh.vertices[x as usize]);
+        assert!(orient3d(c[0], c[1], c[2], c[3]) < 0.0, "tet {t} not positive");
+    }
+    // Every subface is a face of an output tet; every boundary face is a subface.
+    let mut face_count: HashMap<[u32; 3], u32> = HashMap::new();
+    for v in &mesh.tets {
+        for f in 0..4 {
+            let mut k: Vec<u32> = (0..4).filter(|&i| i != f).map(|i| v[i]).collect();
+            k.sort_unstable();
+            *face_count.entry([k[0], k[1], k[2]]).or_default() += 1;
+        }
+    }
+    let subfaces: HashSet<[u32; 3]> = mesh
+        .faces
+        .iter()
+        .map(|f| {
+            let mut k = *f;
+            k.sort_unstable();
+            k
+        })
+        .collect();
+    for f in &subfaces {
+        assert!(face_count.contains_key(f), "subface {f:?} is not a mesh face");
+    }
+    for (f, c) in &face_count {
+        if *c == 1 {
+            assert!(subfaces.contains(f), "boundary face {f:?} is not a subface");
+        }
+    }
+    // Input vertices keep their coordinates.
+    for (i, p) in plc.points.iter().enumerate() {
+        assert_eq!(mesh.vertices[i], *p);
+    }
+    // Facet areas are covered: sum of subface areas per marker-free check: total area of the
+    // subfaces equals the total facet area (boxes: exact rectangles).
+    let mut area = 0.0;
+    for f in &mesh.faces {
+        let [a, b, c] = f.map(|x| glam::DVec3::from_array(mesh.vertices[x as usize]));
+        area += 0.5 * (b - a).cross(c - a).length();
+    }
+    let mut want = 0.0;
+    for fc in &plc.facets {
+        for poly in &fc.polygons {
+            if poly.len() >= 3 {
+                let p0 = glam::DVec3::from_array(plc.points[poly[0] as usize]);
+                let mut s = glam::DVec3::ZERO;
+                for i in 1..poly.len() - 1 {
+                    let a = glam::DVec3::from_array(plc.points[poly[i] as usize]);
+                    let b = glam::DVec3::from_array(plc.points[poly[i + 1] as usize]);
+                    s += (a - p0).cross(b - p0);
+                }
+                want += 0.5 * s.length();
+            }
+        }
+    }
+    assert!((area - want).abs() <= 1e-9 * want.max(1.0), "subface area {area} vs facets {want}");
+}
+
+#[test]
+fn unit_cube_conforms() {
+    let plc = box_plc([0.0; 3], [1.0; 3]);
+    let mesh = tetrahedralize(&plc, &Options3::default()).unwrap();
+    check_mesh(&plc, &mesh);
+    assert!((mesh.volume() - 1.0).abs() < 1e-12);
+    assert!(mesh.complete);
+}
+
+#[test]
+fn unit_cube_quality_and_volume() {
+    let plc = box_plc([0.0; 3], [1.0; 3]);
+    let opts = Options3 {
+        radius_edge: Some(1.414),
+        max_volume: Some(0.001),
+        ..Options3::default()
+    };
+    let mesh = tetrahedralize(&plc, &opts).unwrap();
+    check_mesh(&plc, &mesh);
+    assert!((mesh.volume() - 1.0).abs() < 1e-9);
+    assert!(mesh.tets.len() >= 1000);
+    let s = mesh.stats();
+    assert!(s.max_radius_edge <= 1.414 + 1e-9, "max radius-edge {}", s.max_radius_edge);
+    for t in 0..mesh.tets.len() {
+        assert!(crate::geometry::tet_volume(mesh.corners(t)) <= 0.001 * (1.0 + 1e-12));
+    }
+}
+
+#[test]
+fn box_with_hole_box() {
+    let mut plc = box_plc([0.0; 3], [4.0; 3]);
+    add_box(&mut plc, [1.0; 3], [2.0, 3.0, 2.5], 2);
+    plc.holes.push([1.5, 2.0, 2.0]);
+    let opts = Options3 {
+        radius_edge: Some(2.0),
+        ..Options3::default()
+    };
+    let mesh = tetrahedralize(&plc, &opts).unwrap();
+    check_mesh(&plc, &mesh);
+    let want = 64.0 - 1.0 * 2.0 * 1.5;
+    assert!((mesh.volume() - want).abs() < 1e-9 * want);
+}
+
+#[test]
+fn slanted_flat_box_conforms() {
+    // A box whose facets are not axis-aligned: rotated corners (rational coordinates).
+    let mut plc = Plc::default();
+    let base = [[0.0, 0.0, 0.0], [3.0, 1.0, 0.0], [2.0, 4.0, 0.5], [-1.0, 3.0, 0.5]];
+    for p in base {
+        plc.points.push(p);
+    }
+    for p in base {
+        plc.points.push([p[0] + 0.25, p[1] - 0.5, p[2] + 2.0]);
+    }
+    let quads = [[0, 1, 2, 3], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]];
+    for q in quads {
+        plc.facets.push(Facet {
+            polygons: vec![q.to_vec()],
+            holes: vec![],
+            marker: 1,
+        });
+    }
+    // Only keep planar facets: the top and bottom are planar by construction (base plane and
+    // its translate); the sides are parallelograms, hence planar.
+    let opts = Options3 {
+        radius_edge: Some(2.0),
+        ..Options3::default()
+    };
+    let mesh = tetrahedralize(&plc, &opts).unwrap();
+    check_mesh(&plc, &mesh);
+}

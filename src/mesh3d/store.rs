@@ -1,0 +1,693 @@
+//! The tetrahedralization store and the incremental Bowyer–Watson kernel (paper §2 "Incremental
+//! Delaunay Algorithm", used by §4).
+//!
+//! Tetrahedra live in one flat array indexed by [`TetId`]. Tet `t` has four vertices `tv[4t+i]`
+//! and four neighbours `tn[4t+f] = 4t'+f'`: across the face opposite vertex `i = f` lies tet `t'`,
+//! and that face is face `f'` of `t'`. Both live in one 32-byte record per tet (one cache line
+//! holds two tets), because every step of the kernel reads a tet's vertices and its neighbours
+//! together. Dead slots hold `NONE` vertices and sit on a free list.
+//!
+//! Every real tet is positively oriented in TetGen's sense (`det[b−a, c−a, d−a] > 0`, i.e.
+//! Shewchuk's `orient3d(a, b, c, d) < 0`). The convex hull is closed by *ghost* tets: a hull
+//! triangle plus the symbolic vertex [`GHOST`], oriented as if [`GHOST`] were a point far outside
+//! that triangle. So the structure covers all of space, no bounding-box vertex is needed, and the
+//! output needs no deletion. With [`FACE`] listing each face's vertices counter-clockwise as seen
+//! from outside the tet, a point `p` lies strictly outside face `f` of a real tet exactly when
+//! `orient3d(face f, p) < 0`, and strictly beyond the hull triangle of a ghost whose ghost vertex
+//! is at index `k` exactly when `orient3d(face k, p) > 0`.
+//!
+//! Insertion is two-phase so that a caller can inspect the cavity and veto the point
+//! (Provisional insertion, paper Fig. 8): [`Tets::find_cavity`], then [`Tets::commit_cavity`]
+//! or [`Tets::cancel_cavity`]. [`Tets::insert`] does locate + find + commit.
+//!
+//! The conflict rule is the paper's (open circumballs, needed by Lemma 4.7): a real tet conflicts
+//! with `p` iff `p` is strictly inside its circumsphere; a ghost iff `p` is strictly beyond its
+//! hull triangle, or exactly in the triangle's plane and strictly inside its circumcircle. Both
+//! are decided with exact predicates.
+
+use crate::predicates::{insphere, orient3d};
+
+use super::NONE;
+
+/// A vertex index.
+pub type VertexId = u32;
+/// A tetrahedron index (a slot in the store; check [`Tets::alive`]).
+pub type TetId = u32;
+
+/// The symbolic vertex at infinity shared by all ghost tets. It has no coordinates:
+/// [`Tets::point`] must never be called with it.
+pub const GHOST: VertexId = NONE - 1;
+
+/// `FACE[f]`: the vertex positions of face `f` (the face opposite vertex `f`), ordered
+/// counter-clockwise as seen from outside the tet, so that `orient3d(face, opposite) > 0`.
+pub const FACE: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
+
+/// Largest number of tet slots: neighbour references pack `4t + f` into a `u32`.
+const MAX_SLOTS: usize = 1 << 30;
+
+/// One tetrahedron: vertices and neighbour half-faces side by side, 32 bytes, aligned so that a
+/// record never straddles two cache lines.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C, align(32))]
+struct Tet {
+    v: [VertexId; 4],
+    n: [u32; 4],
+}
+
+const DEAD: Tet = Tet {
+    v: [NONE; 4],
+    n: [NONE; 4],
+};
+
+/// Where [`Tets::locate`] found a point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Located {
+    /// A tet in conflict with the point: a real tet containing it (possibly on its boundary),
+    /// or, when the point is outside the convex hull, a ghost tet whose hull triangle it lies
+    /// strictly beyond.
+    InTet(TetId),
+    /// The point equals this existing vertex exactly.
+    Vertex(VertexId),
+}
+
+/// The outcome of [`Tets::try_insert`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Insertion {
+    /// The vertex was inserted; this is one of its new tets (a good walking hint).
+    Inserted(TetId),
+    /// The vertex's point equals this existing vertex; nothing changed.
+    Duplicate(VertexId),
+    /// No tet in conflict with the point was found: the structure is corrupted (a bug);
+    /// nothing changed.
+    Lost,
+}
+
+/// The tetrahedralization: vertex coordinates, tets with adjacency, and the kernel's reusable
+/// scratch space (cavity, its boundary, the edge table that links new tets).
+pub struct Tets {
+    pts: Vec<[f64; 3]>,
+    /// One live tet incident to each vertex (`NONE` before the vertex is inserted).
+    vtet: Vec<TetId>,
+    /// One live ghost tet (`NONE` before [`Tets::init`]).
+    ghost_tet: TetId,
+    tets: Vec<Tet>,
+    free: Vec<TetId>,
+    live: usize,
+    /// Cavity stamps: `mark[t] == epoch` in the pending cavity, `epoch + 1` tested and not in
+    /// conflict. Stamps avoid clearing anything between insertions.
+    mark: Vec<u32>,
+    epoch: u32,
+    pending: bool,
+    cavity_point: [f64; 3],
+    cavity: Vec<TetId>,
+    boundary: Vec<u32>,
+    /// Boundary faces copied out before the cavity's slots are recycled: `[a, b, c, outside]`.
+    bface: Vec<[u32; 4]>,
+    new_tets: Vec<TetId>,
+    /// Open-addressing table from a directed boundary edge to the new tet face holding it.
+    edge_keys: Vec<u64>,
+    edge_vals: Vec<u32>,
+    edge_stamp: Vec<u32>,
+    edge_epoch: u32,
+}
+
+#[inline]
+fn neighbor_ref(t: TetId, f: usize) -> u32 {
+    (t << 2) | f as u32
+}
+
+#[inline]
+fn edge_hash(key: u64) -> u64 {
+    key.wrapping_mul(0x9E37_79B9_7F4A_7C15)
+}
+
+impl Tets {
+    /// An empty store sized for about `nv` vertices (a Delaunay tetrahedralization of `n`
+    /// random points has about `6.7 n` tets).
+    pub fn with_capacity(nv: usize) -> Tets {
+        let nt = nv.saturating_mul(7).saturating_add(64);
+        Tets {
+            pts: Vec::with_capacity(nv),
+            vtet: Vec::with_capacity(nv),
+            ghost_tet: NONE,
+            tets: Vec::with_capacity(nt),
+            free: Vec::with_capacity(256),
+            live: 0,
+            mark: Vec::with_capacity(nt),
+            epoch: 0,
+            pending: false,
+            cavity_point: [0.0; 3],
+            cavity: Vec::with_capacity(256),
+            boundary: Vec::with_capacity(512),
+            bface: Vec::with_capacity(512),
+            new_tets: Vec::with_capacity(512),
+            edge_keys: vec![0; 1024],
+            edge_vals: vec![0; 1024],
+            edge_stamp: vec![0; 1024],
+            edge_epoch: 0,
+        }
+    }
+
+    /// Adds a vertex (coordinates only; it is not in the tetrahedralization until
+    /// [`Tets::init`] or an insertion uses it) and returns its id. Ids are consecutive from 0.
+    pub fn push_vertex(&mut self, p: [f64; 3]) -> VertexId {
+        let id = self.pts.len();
+        assert!(id < GHOST as usize, "too many vertices");
+        self.pts.push(p);
+        self.vtet.push(NONE);
+        id as VertexId
+    }
+
+    /// The coordinates of vertex `v` (not [`GHOST`]).
+    #[inline]
+    pub fn point(&self, v: VertexId) -> [f64; 3] {
+        self.pts[v as usize]
+    }
+
+    /// Number of vertices pushed (inserted or not).
+    #[inline]
+    pub fn num_vertices(&self) -> usize {
+        self.pts.len()
+    }
+
+    /// Number of tet slots; tets are `0..num_slots()`, live ones pass [`Tets::alive`].
+    #[inline]
+    pub fn num_slots(&self) -> usize {
+        self.tets.len()
+    }
+
+    /// Number of live tets, ghosts included.
+    #[inline]
+    pub fn num_live(&self) -> usize {
+        self.live
+    }
+
+    /// Whether slot `t` holds a live tet (real or ghost).
+    #[inline]
+    pub fn alive(&self, t: TetId) -> bool {
+        self.tets[t as usize].v[0] != NONE
+    }
+
+    /// Whether tet `t` is a ghost (has the vertex [`GHOST`]).
+    #[inline]
+    pub fn is_ghost(&self, t: TetId) -> bool {
+        self.tets[t as usize].v.contains(&GHOST)
+    }
+
+    /// The four vertices of tet `t` (ghost tets contain [`GHOST`]).
+    #[inline]
+    pub fn verts(&self, t: TetId) -> [VertexId; 4] {
+        self.tets[t as usize].v
+    }
+
+    /// The neighbour across face `f` of tet `t` (the face opposite `verts(t)[f]`), and which
+    /// face of the neighbour it is.
+    #[inline]
+    pub fn neighbor(&self, t: TetId, f: usize) -> (TetId, usize) {
+        let h = self.tets[t as usize].n[f];
+        (h >> 2, (h & 3) as usize)
+    }
+
+    /// Some live tet with vertex `v` (possibly a ghost); `NONE` if `v` is not inserted.
+    #[inline]
+    pub fn vertex_tet(&self, v: VertexId) -> TetId {
+        if v == GHOST {
+            self.ghost_tet
+        } else {
+            self.vtet[v as usize]
+        }
+    }
+
+    fn alloc(&mut self) -> TetId {
+        self.live += 1;
+        if let Some(t) = self.free.pop() {
+            return t;
+        }
+        let t = self.tets.len();
+        assert!(t < MAX_SLOTS, "too many tetrahedra (more than 2^30)");
+        self.tets.push(DEAD);
+        self.mark.push(0);
+        t as TetId
+    }
+
+    fn kill(&mut self, t: TetId) {
+        self.tets[t as usize] = DEAD;
+        self.free.push(t);
+        self.live -= 1;
+    }
+
+    /// Builds the first real tet on the four vertices (which must not be coplanar; they are
+    /// reordered to positive orientation) and the four ghost tets that close its hull.
+    pub fn init(&mut self, a: VertexId, b: VertexId, c: VertexId, d: VertexId) {
+        assert!(self.live == 0, "Tets::init called twice");
+        let o = orient3d(self.point(a), self.point(b), self.point(c), self.point(d));
+        assert!(o != 0.0, "Tets::init: the four vertices are coplanar");
+        let first = if o < 0.0 { [a, b, c, d] } else { [b, a, c, d] };
+        let t0 = self.alloc();
+        self.tets[t0 as usize].v = first;
+        let mut all = [t0; 5];
+        for f in 0..4 {
+            // The ghost beyond face f: that face's vertices in outward order, then GHOST, is
+            // positively oriented with GHOST standing for a far point beyond the face.
+            let g = self.alloc();
+            let fv = FACE[f].map(|i| first[i]);
+            self.tets[g as usize].v = [fv[0], fv[1], fv[2], GHOST];
+            all[f + 1] = g;
+        }
+        // Pair up the 20 faces by vertex set (five tets, so brute force is fine).
+        for i in 0..5 {
+            for fi in 0..4 {
+                let key = self.face_key(all[i], fi);
+                for j in 0..5 {
+                    for fj in 0..4 {
+                        if (i, fi) != (j, fj) && key == self.face_key(all[j], fj) {
+                            self.tets[all[i] as usize].n[fi] = neighbor_ref(all[j], fj);
+                        }
+                    }
+                }
+            }
+        }
+        for v in first {
+            self.vtet[v as usize] = t0;
+        }
+        self.ghost_tet = all[1];
+    }
+
+    /// The sorted vertex triple of face `f` of `t`.
+    fn face_key(&self, t: TetId, f: usize) -> [VertexId; 3] {
+        let v = self.tets[t as usize].v;
+        let mut k = FACE[f].map(|i| v[i]);
+        k.sort_unstable();
+        k
+    }
+
+    /// Whether tet `t` is in conflict with `p` (the paper's open-ball rule; see the module
+    /// documentation). Exact.
+    #[inline]
+    pub fn conflict(&self, t: TetId, p: [f64; 3]) -> bool {
+        let v = self.tets[t as usize].v;
+        if let Some(k) = v.iter().position(|&x| x == GHOST) {
+            let [a, b, c] = FACE[k].map(|i| self.point(v[i]));
+            return ghost_conflict(a, b, c, p);
+        }
+        // Real tets have orient3d < 0, which flips Shewchuk's insphere sign.
+        let [a, b, c, d] = v.map(|x| self.point(x));
+        insphere(a, b, c, d, p) < 0.0
+    }
+
+    /// Finds a tet in conflict with `p`, walking from `hint` (any slot; a dead or out-of-range
+    /// hint is replaced by a live tet). The walk is a remembering stochastic visibility walk
+    /// (it never goes back through the face it came in by, and tries faces in a pseudo-random
+    /// order so it cannot cycle forever); when its step budget runs out it falls back to a scan
+    /// of all tets.
+    pub fn locate(&self, p: [f64; 3], hint: TetId) -> Located {
+        let mut t = hint;
+        if t as usize >= self.tets.len() || !self.alive(t) {
+            t = self.ghost_tet;
+        }
+        if t == NONE {
+            return Located::InTet(NONE);
+        }
+        let budget = 64 + self.tets.len();
+        let mut came_from = 4usize;
+        let mut step = 0usize;
+        'walk: while step < budget {
+            step += 1;
+            let tet = &self.tets[t as usize];
+            if let Some(k) = tet.v.iter().position(|&x| x == GHOST) {
+                let [a, b, c] = FACE[k].map(|i| self.point(tet.v[i]));
+                if orient3d(a, b, c, p) > 0.0 {
+                    return Located::InTet(t);
+                }
+                // Not beyond this hull triangle: continue inside the hull.
+                let h = tet.n[k];
+                t = h >> 2;
+                came_from = (h & 3) as usize;
+                continue;
+            }
+            let r = (t as usize ^ step).wrapping_mul(0x9E37_79B9) >> 7;
+            for j in 0..4 {
+                let f = (r + j) & 3;
+                if f == came_from {
+                    continue;
+                }
+                let [a, b, c] = FACE[f].map(|i| self.point(tet.v[i]));
+                if orient3d(a, b, c, p) < 0.0 {
+                    let h = tet.n[f];
+                    t = h >> 2;
+                    came_from = (h & 3) as usize;
+                    continue 'walk;
+                }
+            }
+            // p is in the closed tet t.
+            return match tet.v.iter().find(|&&x| self.point(x) == p) {
+                Some(&v) => Located::Vertex(v),
+                None => Located::InTet(t),
+            };
+        }
+        self.locate_by_scan(p)
+    }
+
+    /// Locates `p` by testing every live tet (the fallback of [`Tets::locate`]).
+    fn locate_by_scan(&self, p: [f64; 3]) -> Located {
+        let mut beyond = NONE;
+        for t in 0..self.tets.len() as TetId {
+            if !self.alive(t) {
+                continue;
+            }
+            let v = self.tets[t as usize].v;
+            if let Some(k) = v.iter().position(|&x| x == GHOST) {
+                let [a, b, c] = FACE[k].map(|i| self.point(v[i]));
+                if beyond == NONE && orient3d(a, b, c, p) > 0.0 {
+                    beyond = t;
+                }
+                continue;
+            }
+            let inside = (0..4).all(|f| {
+                let [a, b, c] = FACE[f].map(|i| self.point(v[i]));
+                orient3d(a, b, c, p) >= 0.0
+            });
+            if inside {
+                return match v.iter().find(|&&x| self.point(x) == p) {
+                    Some(&w) => Located::Vertex(w),
+                    None => Located::InTet(t),
+                };
+            }
+        }
+        Located::InTet(beyond)
+    }
+
+    fn next_epoch(&mut self) {
+        if self.epoch >= u32::MAX - 4 {
+            self.mark.iter_mut().for_each(|m| *m = 0);
+            self.epoch = 0;
+        }
+        self.epoch += 2;
+    }
+
+    /// Collects the cavity of `p`: every tet in conflict with `p` that is connected to `start`
+    /// through faces of conflicting tets, and the cavity's boundary. `start` must be in conflict
+    /// with `p` (as returned by [`Tets::locate`]); if it is not, the cavity is left empty and
+    /// `false` is returned. The mesh is not changed: follow with [`Tets::commit_cavity`] or
+    /// [`Tets::cancel_cavity`].
+    pub fn find_cavity(&mut self, p: [f64; 3], start: TetId) -> bool {
+        self.next_epoch();
+        self.cavity.clear();
+        self.boundary.clear();
+        self.pending = true;
+        self.cavity_point = p;
+        if start as usize >= self.tets.len() || !self.alive(start) || !self.conflict(start, p) {
+            return false;
+        }
+        let epoch = self.epoch;
+        self.mark[start as usize] = epoch;
+        self.cavity.push(start);
+        let mut i = 0;
+        while i < self.cavity.len() {
+            let t = self.cavity[i];
+            i += 1;
+            let n = self.tets[t as usize].n;
+            for (f, &h) in n.iter().enumerate() {
+                let u = (h >> 2) as usize;
+                let m = self.mark[u];
+                if m == epoch {
+                    continue;
+                }
+                if m != epoch + 1 {
+                    if self.conflict(u as TetId, p) {
+                        self.mark[u] = epoch;
+                        self.cavity.push(u as TetId);
+                        continue;
+                    }
+                    self.mark[u] = epoch + 1;
+                }
+                self.boundary.push(neighbor_ref(t, f));
+            }
+        }
+        true
+    }
+
+    /// The tets of the pending cavity (empty when none is pending).
+    #[inline]
+    pub fn cavity(&self) -> &[TetId] {
+        &self.cavity
+    }
+
+    /// The boundary of the pending cavity as half-faces `4t + f`: `t` is in the cavity and its
+    /// neighbour across face `f` is not.
+    #[inline]
+    pub fn cavity_boundary(&self) -> &[u32] {
+        &self.boundary
+    }
+
+    /// Whether `t` is in the pending cavity (O(1)).
+    #[inline]
+    pub fn in_cavity(&self, t: TetId) -> bool {
+        self.pending && self.mark[t as usize] == self.epoch
+    }
+
+    /// Drops the pending cavity; the mesh is unchanged.
+    pub fn cancel_cavity(&mut self) {
+        self.cavity.clear();
+        self.boundary.clear();
+        self.pending = false;
+        self.next_epoch();
+    }
+
+    /// Replaces the pending cavity by the tets joining `v` to each boundary face, and returns
+    /// the new tets (valid until the next call that changes the store). `v`'s point must be the
+    /// point given to [`Tets::find_cavity`]. Updates the vertex-to-tet map.
+    pub fn commit_cavity(&mut self, v: VertexId) -> &[TetId] {
+        debug_assert!(self.pending, "commit_cavity without find_cavity");
+        debug_assert!(
+            self.point(v) == self.cavity_point,
+            "commit_cavity: vertex {v} is not the cavity's point"
+        );
+        self.new_tets.clear();
+        if self.cavity.is_empty() {
+            self.pending = false;
+            self.next_epoch();
+            return &self.new_tets;
+        }
+        // Copy the boundary faces out first: the cavity's slots are recycled for the new tets.
+        self.bface.clear();
+        for &h in &self.boundary {
+            let tet = &self.tets[(h >> 2) as usize];
+            let f = (h & 3) as usize;
+            let [a, b, c] = FACE[f].map(|i| tet.v[i]);
+            self.bface.push([a, b, c, tet.n[f]]);
+        }
+        for i in 0..self.cavity.len() {
+            let t = self.cavity[i];
+            self.kill(t);
+        }
+        self.cavity.clear();
+        self.boundary.clear();
+
+        // Room in the edge table for 3 directed edges per face at load <= 1/4.
+        let need = (self.bface.len() * 12).next_power_of_two().max(64);
+        if need > self.edge_keys.len() {
+            self.edge_keys = vec![0; need];
+            self.edge_vals = vec![0; need];
+            self.edge_stamp = vec![0; need];
+            self.edge_epoch = 0;
+        }
+        self.edge_epoch = self.edge_epoch.wrapping_add(1);
+        if self.edge_epoch == 0 {
+            self.edge_stamp.iter_mut().for_each(|s| *s = 0);
+            self.edge_epoch = 1;
+        }
+        let mask = (self.edge_keys.len() - 1) as u64;
+        let shift = 64 - self.edge_keys.len().trailing_zeros();
+
+        for k in 0..self.bface.len() {
+            let [a, b, c, outside] = self.bface[k];
+            let nt = self.alloc();
+            // [v, a, b, c] is positive: (a, b, c) is outward for a cavity tet and v is inside.
+            self.tets[nt as usize] = Tet {
+                v: [v, a, b, c],
+                n: [outside, NONE, NONE, NONE],
+            };
+            self.tets[(outside >> 2) as usize].n[(outside & 3) as usize] = neighbor_ref(nt, 0);
+            self.new_tets.push(nt);
+            // Face j (1..=3) holds the directed boundary edge below; the neighbouring new tet
+            // holds the same edge reversed.
+            for (j, (x, y)) in [(1, (b, c)), (2, (c, a)), (3, (a, b))] {
+                let here = neighbor_ref(nt, j);
+                let want = ((y as u64) << 32) | x as u64;
+                let mut s = (edge_hash(want) >> shift) & mask;
+                let mut linked = false;
+                while self.edge_stamp[s as usize] == self.edge_epoch {
+                    if self.edge_keys[s as usize] == want {
+                        let there = self.edge_vals[s as usize];
+                        self.tets[nt as usize].n[j] = there;
+                        self.tets[(there >> 2) as usize].n[(there & 3) as usize] = here;
+                        // Each directed edge is matched once; the slot stays as a tombstone.
+                        self.edge_keys[s as usize] = u64::MAX;
+                        linked = true;
+                        break;
+                    }
+                    s = (s + 1) & mask;
+                }
+                if !linked {
+                    let key = ((x as u64) << 32) | y as u64;
+                    let mut s = (edge_hash(key) >> shift) & mask;
+                    while self.edge_stamp[s as usize] == self.edge_epoch {
+                        s = (s + 1) & mask;
+                    }
+                    self.edge_stamp[s as usize] = self.edge_epoch;
+                    self.edge_keys[s as usize] = key;
+                    self.edge_vals[s as usize] = here;
+                }
+            }
+            for x in [a, b, c] {
+                if x == GHOST {
+                    self.ghost_tet = nt;
+                } else {
+                    self.vtet[x as usize] = nt;
+                }
+            }
+        }
+        self.vtet[v as usize] = self.new_tets[0];
+        #[cfg(debug_assertions)]
+        for &t in &self.new_tets {
+            let tv = self.tets[t as usize].v;
+            debug_assert!(
+                !tv.contains(&NONE) && !self.tets[t as usize].n.contains(&NONE),
+                "cavity of vertex {v} is not a topological ball (new tet {t} left unlinked)"
+            );
+            if !tv.contains(&GHOST) {
+                let [a, b, c, d] = tv.map(|x| self.point(x));
+                debug_assert!(
+                    orient3d(a, b, c, d) < 0.0,
+                    "cavity of vertex {v} is not star-shaped (new tet {t} is flat or inverted)"
+                );
+            }
+        }
+        self.pending = false;
+        self.next_epoch();
+        &self.new_tets
+    }
+
+    /// Inserts vertex `v` (pushed, not yet inserted): locate from `hint`, find the cavity,
+    /// commit. Returns one of the new tets, or `Err(w)` when `v`'s point equals vertex `w`'s
+    /// (nothing changes then). Panics if the structure is corrupted so that no conflicting tet
+    /// exists; use [`Tets::try_insert`] to get that as a value.
+    pub fn insert(&mut self, v: VertexId, hint: TetId) -> Result<TetId, VertexId> {
+        match self.try_insert(v, hint) {
+            Insertion::Inserted(t) => Ok(t),
+            Insertion::Duplicate(w) => Err(w),
+            Insertion::Lost => panic!("no tet is in conflict with vertex {v}"),
+        }
+    }
+
+    /// [`Tets::insert`] reporting every outcome as a value.
+    pub fn try_insert(&mut self, v: VertexId, hint: TetId) -> Insertion {
+        let p = self.point(v);
+        match self.locate(p, hint) {
+            Located::Vertex(w) => Insertion::Duplicate(w),
+            Located::InTet(t) => {
+                if !self.find_cavity(p, t) {
+                    self.cancel_cavity();
+                    return Insertion::Lost;
+                }
+                Insertion::Inserted(self.commit_cavity(v)[0])
+            }
+        }
+    }
+
+    /// All live tets incident to `v` (ghosts included), in `out` (cleared first). Empty when
+    /// `v` is not inserted.
+    pub fn star(&self, v: VertexId, out: &mut Vec<TetId>) {
+        out.clear();
+        let start = self.vertex_tet(v);
+        if start == NONE {
+            return;
+        }
+        out.push(start);
+        let mut i = 0;
+        while i < out.len() {
+            let t = out[i];
+            i += 1;
+            let tet = &self.tets[t as usize];
+            for f in 0..4 {
+                if tet.v[f] == v {
+                    continue;
+                }
+                let u = tet.n[f] >> 2;
+                // Stars are small (tens of tets), so a linear membership test beats hashing.
+                if !out.contains(&u) {
+                    out.push(u);
+                }
+            }
+        }
+    }
+
+    /// A live tet (possibly a ghost, when `ab` is a hull edge or one end is [`GHOST`])
+    /// containing both `a` and `b`.
+    pub fn find_edge(&self, a: VertexId, b: VertexId) -> Option<TetId> {
+        let mut star = Vec::with_capacity(64);
+        self.star(a, &mut star);
+        star.into_iter().find(|&t| self.tets[t as usize].v.contains(&b))
+    }
+
+    /// A half-face `4t + f` whose face has the vertices `a, b, c` (in any order): `t` contains
+    /// all three and `f` is the position of its fourth vertex.
+    pub fn find_face(&self, a: VertexId, b: VertexId, c: VertexId) -> Option<u32> {
+        let mut star = Vec::with_capacity(64);
+        self.star(a, &mut star);
+        star.into_iter().find_map(|t| {
+            let v = self.tets[t as usize].v;
+            if v.contains(&b) && v.contains(&c) {
+                let f = (0..4).find(|&i| v[i] != a && v[i] != b && v[i] != c)?;
+                Some(neighbor_ref(t, f))
+            } else {
+                None
+            }
+        })
+    }
+}
+
+/// Whether `p` conflicts with the ghost tet on hull triangle `a, b, c` (given in the ghost's
+/// face order, so that `orient3d(a, b, c, q) > 0` for `q` strictly outside the hull): `p` is
+/// strictly beyond the triangle's plane, or in that plane and strictly inside the triangle's
+/// circumcircle. Exact.
+#[inline]
+pub fn ghost_conflict(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3]) -> bool {
+    let o = orient3d(a, b, c, p);
+    if o != 0.0 {
+        return o > 0.0;
+    }
+    in_circumcircle_coplanar(a, b, c, p)
+}
+
+/// For `p` exactly in the plane of the (non-degenerate) triangle `a, b, c`: whether `p` lies
+/// strictly inside the triangle's circumcircle. Exact.
+///
+/// Any sphere through `a, b, c` cuts their plane in their circumcircle, so the answer is the
+/// sign of `insphere(a, b, c, q, p)` for a point `q` off the plane, corrected by the sign of
+/// `orient3d(a, b, c, q)`. `q` is `a` moved along the coordinate axis of the largest normal
+/// component by `max(1, |a_k|)`, so that the rounded `q` really differs from `a`; the other
+/// axes are tried should that `q` still be (exactly) in the plane.
+pub fn in_circumcircle_coplanar(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3]) -> bool {
+    let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let w = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+    let nrm = [
+        (u[1] * w[2] - u[2] * w[1]).abs(),
+        (u[2] * w[0] - u[0] * w[2]).abs(),
+        (u[0] * w[1] - u[1] * w[0]).abs(),
+    ];
+    let mut axes = [0usize, 1, 2];
+    axes.sort_by(|&i, &j| nrm[j].total_cmp(&nrm[i]));
+    for k in axes {
+        let mut q = a;
+        q[k] = a[k] + a[k].abs().max(1.0);
+        let o = orient3d(a, b, c, q);
+        if o != 0.0 {
+            let s = insphere(a, b, c, q, p);
+            return if o > 0.0 { s > 0.0 } else { s < 0.0 };
+        }
+    }
+    // a, b, c are collinear: no circumcircle.
+    false
+}

@@ -128,6 +128,202 @@ pub fn dot_sign_3d(a: [f64; 3], b: [f64; 3], p: [f64; 3]) -> i32 {
     e.sign()
 }
 
+/// An exact real number as a growable expansion: a sum of non-overlapping, non-zero doubles
+/// stored in increasing magnitude (Shewchuk's representation), so the largest term alone gives
+/// the sign. Unlike the fixed [`Expansion`], it has no length bound, which is what products of
+/// degree six need (the 3D facet predicates). It is meant for the rare exact stage behind a
+/// float filter: every operation allocates its result.
+///
+/// Exact barring overflow and underflow (like all of Shewchuk's arithmetic); relies on IEEE
+/// round-to-nearest-even, which Rust guarantees for `f64`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct DynExpansion {
+    /// Zero-free, non-overlapping, increasing magnitude; empty means zero.
+    terms: Vec<f64>,
+}
+
+impl DynExpansion {
+    /// Zero.
+    pub fn zero() -> Self {
+        DynExpansion { terms: Vec::new() }
+    }
+
+    /// The double `x` exactly.
+    pub fn from_f64(x: f64) -> Self {
+        Self::from_pair(x, 0.0)
+    }
+
+    /// The exact difference `a - b` (at most two terms).
+    pub fn from_diff(a: f64, b: f64) -> Self {
+        let (hi, lo) = two_diff(a, b);
+        Self::from_pair(hi, lo)
+    }
+
+    /// The exact product `a * b` (at most two terms).
+    pub fn from_product(a: f64, b: f64) -> Self {
+        let (hi, lo) = two_prod(a, b);
+        Self::from_pair(hi, lo)
+    }
+
+    /// `hi + lo` where `lo` is the rounding error of `hi` (already non-overlapping).
+    fn from_pair(hi: f64, lo: f64) -> Self {
+        let terms = [lo, hi].into_iter().filter(|&t| t != 0.0).collect();
+        DynExpansion { terms }
+    }
+
+    /// The components, smallest magnitude first (empty for zero).
+    pub fn terms(&self) -> &[f64] {
+        &self.terms
+    }
+
+    /// The sign of the exact value: -1, 0 or 1.
+    pub fn sign(&self) -> i32 {
+        match self.terms.last() {
+            Some(&v) if v > 0.0 => 1,
+            Some(&v) if v < 0.0 => -1,
+            _ => 0,
+        }
+    }
+
+    /// A double close to the exact value (the rounded sum of the components); only for
+    /// magnitudes, never for decisions.
+    pub fn estimate(&self) -> f64 {
+        self.terms.iter().sum()
+    }
+
+    /// The exact sum (Shewchuk's Fast-Expansion-Sum with zero elimination: merge by magnitude,
+    /// then one Two-Sum sweep).
+    pub fn add(&self, other: &DynExpansion) -> DynExpansion {
+        let (e, f) = (&self.terms, &other.terms);
+        if e.is_empty() {
+            return other.clone();
+        }
+        if f.is_empty() {
+            return self.clone();
+        }
+        let mut merged = Vec::with_capacity(e.len() + f.len());
+        let (mut i, mut j) = (0, 0);
+        while i < e.len() && j < f.len() {
+            if e[i].abs() < f[j].abs() {
+                merged.push(e[i]);
+                i += 1;
+            } else {
+                merged.push(f[j]);
+                j += 1;
+            }
+        }
+        merged.extend_from_slice(&e[i..]);
+        merged.extend_from_slice(&f[j..]);
+        let mut out = Vec::with_capacity(merged.len());
+        let mut q = merged[0];
+        for &g in &merged[1..] {
+            let (s, err) = two_sum(q, g);
+            if err != 0.0 {
+                out.push(err);
+            }
+            q = s;
+        }
+        if q != 0.0 {
+            out.push(q);
+        }
+        DynExpansion { terms: out }
+    }
+
+    /// The exact negation.
+    pub fn neg(&self) -> DynExpansion {
+        DynExpansion {
+            terms: self.terms.iter().map(|&t| -t).collect(),
+        }
+    }
+
+    /// The exact difference `self - other`.
+    pub fn sub(&self, other: &DynExpansion) -> DynExpansion {
+        self.add(&other.neg())
+    }
+
+    /// The exact product with one double (Shewchuk's Scale-Expansion with zero elimination).
+    pub fn scale(&self, b: f64) -> DynExpansion {
+        let mut out = Vec::with_capacity(2 * self.terms.len());
+        let Some((&first, rest)) = self.terms.split_first() else {
+            return DynExpansion::zero();
+        };
+        let (mut q, lo) = two_prod(first, b);
+        if lo != 0.0 {
+            out.push(lo);
+        }
+        for &t in rest {
+            let (p1, p0) = two_prod(t, b);
+            let (s, err) = two_sum(q, p0);
+            if err != 0.0 {
+                out.push(err);
+            }
+            let (s2, err2) = two_sum(p1, s);
+            if err2 != 0.0 {
+                out.push(err2);
+            }
+            q = s2;
+        }
+        if q != 0.0 {
+            out.push(q);
+        }
+        DynExpansion { terms: out }
+    }
+
+    /// The exact product of two expansions: the shorter one's components each scale the
+    /// other, the partial products are summed, and the result is compressed so that chains of
+    /// products stay short.
+    pub fn mul(&self, other: &DynExpansion) -> DynExpansion {
+        let (long, short) = if self.terms.len() >= other.terms.len() {
+            (self, other)
+        } else {
+            (other, self)
+        };
+        let mut acc = DynExpansion::zero();
+        for &t in &short.terms {
+            acc = acc.add(&long.scale(t));
+        }
+        acc.compress();
+        acc
+    }
+
+    /// Rewrites the expansion with as few components as its value allows (Shewchuk's
+    /// Compress); the value is unchanged.
+    pub fn compress(&mut self) {
+        let e = &self.terms;
+        if e.len() < 2 {
+            return;
+        }
+        // Top-down sweep: gather the large parts, keeping the carries below them.
+        let mut g = vec![0.0; e.len()];
+        let mut bottom = e.len() - 1;
+        let mut q = e[bottom];
+        for &t in e[..e.len() - 1].iter().rev() {
+            let (s, err) = two_sum(q, t);
+            if err != 0.0 {
+                g[bottom] = s;
+                bottom -= 1;
+                q = err;
+            } else {
+                q = s;
+            }
+        }
+        g[bottom] = q;
+        // Bottom-up sweep: the final non-overlapping components, zero-free.
+        let mut out = Vec::with_capacity(e.len() - bottom);
+        for &h in &g[bottom + 1..] {
+            let (s, err) = two_sum(h, q);
+            if err != 0.0 {
+                out.push(err);
+            }
+            q = s;
+        }
+        if q != 0.0 {
+            out.push(q);
+        }
+        self.terms = out;
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -154,5 +350,137 @@ mod tests {
         e.add(1.0);
         e.add(-1e300);
         assert_eq!(e.sign(), 1);
+    }
+
+    /// A small deterministic generator (splitmix64), so failures reproduce.
+    struct Rng(u64);
+
+    impl Rng {
+        fn next(&mut self) -> u64 {
+            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+            let mut z = self.0;
+            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+            z ^ (z >> 31)
+        }
+
+        fn below(&mut self, n: u64) -> i64 {
+            (self.next() % n) as i64
+        }
+
+        /// `X * 2^s` with `|X| < 2^bits`, `s` in `lo..=hi`: exactly `X * 2^(s - lo)` units
+        /// of `2^lo`, returned with that integer.
+        fn dyadic(&mut self, bits: u32, lo: i32, hi: i32) -> (f64, i128) {
+            let x = self.below(1 << bits) - (1 << (bits - 1));
+            let s = lo + self.below((hi - lo + 1) as u64) as i32;
+            let units = (x as i128) << (s - lo);
+            ((x as f64) * 2f64.powi(s), units)
+        }
+    }
+
+    /// The exact value of `e` in units of `2^lo`, checking the representation invariants on
+    /// the way: zero-free, increasing magnitude, non-overlapping.
+    fn value_in_units(e: &DynExpansion, lo: i32) -> i128 {
+        let t = e.terms();
+        for w in t.windows(2) {
+            assert!(
+                w[0] != 0.0 && w[0].abs() < w[1].abs(),
+                "not increasing: {t:?}"
+            );
+            // Non-overlapping: the smaller term is below the lowest set bit of the larger.
+            let low_bit = {
+                let (m, ex) = frexp_int(w[1]);
+                ex + m.trailing_zeros() as i32
+            };
+            assert!(w[0].abs() < 2f64.powi(low_bit), "overlapping terms: {t:?}");
+        }
+        t.iter()
+            .map(|&v| {
+                let scaled = v * 2f64.powi(-lo);
+                assert_eq!(scaled.fract(), 0.0, "term {v} below the unit 2^{lo}");
+                scaled as i128
+            })
+            .sum()
+    }
+
+    /// `|v| = m * 2^ex` with `m` the integer significand (v finite, non-zero).
+    fn frexp_int(v: f64) -> (u64, i32) {
+        let bits = v.abs().to_bits();
+        let exp = ((bits >> 52) & 0x7ff) as i32;
+        let frac = bits & ((1 << 52) - 1);
+        if exp == 0 {
+            (frac, -1074)
+        } else {
+            (frac | (1 << 52), exp - 1075)
+        }
+    }
+
+    #[test]
+    fn dyn_expansion_matches_i128_on_wide_exponent_ranges() {
+        let mut rng = Rng(7);
+        let mut two_term = 0;
+        for _ in 0..20_000 {
+            // 40-bit significands scaled by 2^-20 .. 2^0: a difference can need ~60 bits, so
+            // many are genuinely two-term expansions.
+            let mut v = [(0.0, 0i128); 4];
+            for x in &mut v {
+                *x = rng.dyadic(40, -20, 0);
+            }
+            let d1 = DynExpansion::from_diff(v[0].0, v[1].0);
+            let d2 = DynExpansion::from_diff(v[2].0, v[3].0);
+            assert_eq!(value_in_units(&d1, -20), v[0].1 - v[1].1);
+            two_term += usize::from(d1.terms().len() == 2);
+            let prod = d1.mul(&d2);
+            let want = (v[0].1 - v[1].1) * (v[2].1 - v[3].1);
+            assert_eq!(value_in_units(&prod, -40), want);
+            assert_eq!(prod.sign(), want.signum() as i32);
+            // A sum of two products that often cancels to (nearly) zero.
+            let other = d2
+                .mul(&d1)
+                .sub(&DynExpansion::from_f64(v[0].0).scale(v[2].0));
+            let sum = prod.sub(&other);
+            let want_sum = want - (want - v[0].1 * v[2].1);
+            assert_eq!(value_in_units(&sum, -40), want_sum);
+            assert_eq!(sum.sign(), want_sum.signum() as i32);
+            let mut compressed = sum.clone();
+            compressed.compress();
+            assert_eq!(value_in_units(&compressed, -40), want_sum);
+            assert!(compressed.terms().len() <= sum.terms().len());
+        }
+        // The point of the wide range: many differences are not representable as one double.
+        assert!(two_term > 500, "only {two_term} inexact differences");
+    }
+
+    #[test]
+    fn dyn_expansion_degree_three_and_cancellation() {
+        let mut rng = Rng(11);
+        for _ in 0..5_000 {
+            let (a, ai) = rng.dyadic(12, -20, 8);
+            let (b, bi) = rng.dyadic(12, -20, 8);
+            let (c, ci) = rng.dyadic(12, -20, 8);
+            let ab = DynExpansion::from_diff(a, b);
+            let cube = ab.mul(&ab).mul(&DynExpansion::from_diff(b, c));
+            let want = (ai - bi) * (ai - bi) * (bi - ci);
+            assert_eq!(value_in_units(&cube, -60), want);
+            // (a-b)^2 - a^2 + 2ab - b^2 is exactly zero.
+            let zero = ab
+                .mul(&ab)
+                .sub(&DynExpansion::from_product(a, a))
+                .add(&DynExpansion::from_product(a, b).scale(2.0))
+                .sub(&DynExpansion::from_product(b, b));
+            assert_eq!(zero.sign(), 0);
+            assert!(zero.terms().is_empty());
+        }
+        assert_eq!(
+            DynExpansion::zero()
+                .mul(&DynExpansion::from_f64(3.0))
+                .sign(),
+            0
+        );
+        assert_eq!(DynExpansion::from_diff(1e300, -1e300).estimate(), 2e300);
+        let tiny = DynExpansion::from_f64(1e300)
+            .add(&DynExpansion::from_f64(1.0))
+            .sub(&DynExpansion::from_f64(1e300));
+        assert_eq!(tiny.terms(), &[1.0]);
     }
 }

@@ -3,6 +3,11 @@
 //! Orientation and in-circle come from the `robust` crate (Shewchuk's adaptive predicates).
 //! Encroachment (a point strictly inside a segment's diametral circle) is the exact sign of a
 //! dot product, computed in [`crate::exact`].
+//!
+//! The 3D facet meshes need "2D-in-3D" decisions without projecting coordinates (a projected
+//! circle is an ellipse): [`incircle3d`] for points in a facet plane, [`in_diametral_ball_tri`]
+//! and [`in_diametral_ball_seg3`] for encroachment, [`orient2d_proj`] and [`dominant_axis`] for
+//! orientation inside a plane.
 
 use robust::{Coord, Coord3D};
 
@@ -63,6 +68,173 @@ pub fn strictly_between(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> bool {
     (a[k] < p[k] && p[k] < b[k]) || (b[k] < p[k] && p[k] < a[k])
 }
 
+/// The orient2d of `a, b, c` projected along coordinate `axis` (that coordinate dropped, the
+/// other two kept in cyclic order `axis+1, axis+2`), so its sign is exactly the sign of
+/// component `axis` of the normal `(b - a) × (c - a)`. `axis` must be 0, 1 or 2.
+#[inline]
+pub fn orient2d_proj(a: [f64; 3], b: [f64; 3], c: [f64; 3], axis: usize) -> f64 {
+    debug_assert!(axis < 3, "axis {axis} is not a coordinate of a 3D point");
+    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    orient2d([a[i], a[j]], [b[i], b[j]], [c[i], c[j]])
+}
+
+/// The coordinate axis along which the triangle `abc` projects best: the largest magnitude
+/// among the three exact-sign projected orientations ([`orient2d_proj`]), ties going to z,
+/// then x, then y. Deterministic in `a, b, c`, and for any non-degenerate triangle the chosen
+/// normal component is exactly non-zero, so projecting along it never flattens the triangle.
+/// For a degenerate (collinear) triangle every component is zero and the answer is 2.
+pub fn dominant_axis(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> usize {
+    let mut best = 2;
+    let mut mag = orient2d_proj(a, b, c, 2).abs();
+    for k in [0, 1] {
+        let v = orient2d_proj(a, b, c, k).abs();
+        if v > mag {
+            best = k;
+            mag = v;
+        }
+    }
+    best
+}
+
+/// The in-circle test inside a facet plane: for `p` coplanar with `a, b, c`, positive when `p`
+/// is strictly inside the circumcircle of `abc`, zero on it, negative outside, whatever the
+/// orientation of `abc` (exact sign; only the sign is meaningful). Zero for a degenerate
+/// (collinear) triangle, which has no circumcircle.
+///
+/// Why it works: every sphere through `a, b, c` cuts their plane in their circumcircle, so
+/// for coplanar `p` inside-the-sphere is inside-the-circle. The sphere used passes through a
+/// fourth point `q`: `a` moved along the [`dominant_axis`] `k` (whose normal component is
+/// exactly non-zero, so `q` is off the plane) by `max(1, |a_k|)` towards and past zero — a
+/// step large enough that the rounded `q_k` really differs from `a_k`, and one that cannot
+/// overflow. `insphere` is then sign-corrected by `orient3d(a, b, c, q)`.
+///
+/// Precondition: `p` exactly coplanar with `a, b, c` (e.g. a vertex of the facet). If it is
+/// not, the answer is still an exact, consistent decision, but against that sphere through
+/// `a, b, c, q`; since `q` is a deterministic function of `a, b, c` alone, the same triangle
+/// always gets the same sphere, whatever `p` is asked about.
+pub fn incircle3d(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3]) -> f64 {
+    let k = dominant_axis(a, b, c);
+    let mut q = a;
+    let step = a[k].abs().max(1.0);
+    q[k] = if a[k] >= 0.0 {
+        a[k] - step
+    } else {
+        a[k] + step
+    };
+    let o = orient3d(a, b, c, q);
+    if o == 0.0 {
+        return 0.0;
+    }
+    let s = insphere(a, b, c, q, p);
+    if o > 0.0 {
+        s
+    } else {
+        -s
+    }
+}
+
+/// `true` when `p` lies strictly inside the diametral ball of segment `ab` in 3D (the angle
+/// `apb` is obtuse), decided exactly.
+#[inline]
+pub fn in_diametral_ball_seg3(a: [f64; 3], b: [f64; 3], p: [f64; 3]) -> bool {
+    crate::exact::dot_sign_3d(a, b, p) < 0
+}
+
+/// `true` when `p` lies strictly inside the diametral ball of triangle `abc`: the smallest
+/// sphere through `a, b, c`, centred at their circumcentre in their plane. `p` need not be
+/// coplanar. Exact (barring overflow/underflow); `false` for a degenerate triangle, whose
+/// diametral ball is empty.
+///
+/// With `u = b - a`, `w = c - a`, `n = u × w`, `d = p - a`, the circumcentre is
+/// `a + m / (2|n|²)` with `m = |w|²(n × u) + |u|²(w × n)`, and `|p - o|² < R²` becomes the
+/// degree-6 polynomial test `d·m - |d|²|n|² > 0`. It is first evaluated in floats; if that is
+/// too close to zero to trust, it is redone in exact expansion arithmetic.
+pub fn in_diametral_ball_tri(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3]) -> bool {
+    match diametral_tri_filter(a, b, c, p) {
+        Some(s) => s > 0,
+        None => diametral_tri_exact(a, b, c, p) > 0,
+    }
+}
+
+#[inline]
+fn sub3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+#[inline]
+fn cross3(u: [f64; 3], w: [f64; 3]) -> [f64; 3] {
+    [
+        u[1] * w[2] - u[2] * w[1],
+        u[2] * w[0] - u[0] * w[2],
+        u[0] * w[1] - u[1] * w[0],
+    ]
+}
+
+/// The cross product with every product's magnitude added: what bounds rounding errors.
+#[inline]
+fn cross3_abs(u: [f64; 3], w: [f64; 3]) -> [f64; 3] {
+    [
+        (u[1] * w[2]).abs() + (u[2] * w[1]).abs(),
+        (u[2] * w[0]).abs() + (u[0] * w[2]).abs(),
+        (u[0] * w[1]).abs() + (u[1] * w[0]).abs(),
+    ]
+}
+
+#[inline]
+fn dot3(u: [f64; 3], w: [f64; 3]) -> f64 {
+    u[0] * w[0] + u[1] * w[1] + u[2] * w[2]
+}
+
+/// The float stage of [`in_diametral_ball_tri`]: the sign of `d·m - |d|²|n|²` when it is
+/// certain, `None` otherwise.
+///
+/// Error bound: expanding the float evaluation into monomials of the exact differences, each
+/// monomial carries at most 19 rounding factors `(1 + δ)`, `|δ| ≤ ε = 2⁻⁵³` (e.g. for
+/// `d_x |w|² n_y u_z`: 3 for the final sums, 2 for `d·m`'s product and `d_x`, 2 for `m_x`'s
+/// sum and product, 5 for `w_x²` inside `|w|²`, 3 for `n_y u_z` and its subtraction, 4 for
+/// `n_y`). So the error is at most `γ₁₉·M ≈ 19ε·M`, where `M` is the same expression with
+/// absolute values and every subtraction made an addition; `M` computed in floats is low by
+/// at most another factor `(1 - ε)¹⁹`. `32ε·M` (an exact power-of-two scaling) covers both.
+fn diametral_tri_filter(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3]) -> Option<i32> {
+    let (u, w, d) = (sub3(b, a), sub3(c, a), sub3(p, a));
+    let n = cross3(u, w);
+    let n_abs = cross3_abs(u, w);
+    let (uu, ww, dd) = (dot3(u, u), dot3(w, w), dot3(d, d));
+    let (nxu, wxn) = (cross3(n, u), cross3(w, n));
+    let u_abs = u.map(f64::abs);
+    let w_abs = w.map(f64::abs);
+    let (nxu_abs, wxn_abs) = (cross3_abs(n_abs, u_abs), cross3_abs(w_abs, n_abs));
+    let m = [0, 1, 2].map(|k| ww * nxu[k] + uu * wxn[k]);
+    let m_abs = [0, 1, 2].map(|k| ww * nxu_abs[k] + uu * wxn_abs[k]);
+    let det = dot3(d, m) - dd * dot3(n, n);
+    let mag = dot3(d.map(f64::abs), m_abs) + dd * dot3(n_abs, n_abs);
+    // 32ε with ε = 2⁻⁵³ (f64::EPSILON is 2⁻⁵²).
+    let bound = 16.0 * f64::EPSILON * mag;
+    if det > bound {
+        Some(1)
+    } else if det < -bound {
+        Some(-1)
+    } else {
+        None
+    }
+}
+
+/// The exact sign of `d·m - |d|²|n|²` (see [`in_diametral_ball_tri`]) in expansion arithmetic.
+fn diametral_tri_exact(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3]) -> i32 {
+    use crate::exact::DynExpansion as X;
+    let diff = |x: [f64; 3], y: [f64; 3]| [0, 1, 2].map(|k| X::from_diff(x[k], y[k]));
+    let cross = |u: &[X; 3], w: &[X; 3]| {
+        [(1, 2), (2, 0), (0, 1)].map(|(i, j)| u[i].mul(&w[j]).sub(&u[j].mul(&w[i])))
+    };
+    let dot = |u: &[X; 3], w: &[X; 3]| u[0].mul(&w[0]).add(&u[1].mul(&w[1])).add(&u[2].mul(&w[2]));
+    let (u, w, d) = (diff(b, a), diff(c, a), diff(p, a));
+    let n = cross(&u, &w);
+    let (uu, ww, dd, nn) = (dot(&u, &u), dot(&w, &w), dot(&d, &d), dot(&n, &n));
+    let (nxu, wxn) = (cross(&n, &u), cross(&w, &n));
+    let m = [0, 1, 2].map(|k| ww.mul(&nxu[k]).add(&uu.mul(&wxn[k])));
+    dot(&d, &m).sub(&dd.mul(&nn)).sign()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -92,5 +264,423 @@ mod tests {
         assert!(!encroaches([0.0, 0.0], [2.0, 0.0], [1.0, 1.0]));
         assert!(strictly_between([0.0, 0.0], [2.0, 2.0], [1.0, 1.0]));
         assert!(!strictly_between([0.0, 0.0], [2.0, 2.0], [2.0, 2.0]));
+    }
+
+    // ---- 3D facet predicates ----
+
+    type P = [i64; 3];
+
+    fn fl(p: P) -> [f64; 3] {
+        p.map(|x| x as f64)
+    }
+
+    fn add(p: P, q: P) -> P {
+        [p[0] + q[0], p[1] + q[1], p[2] + q[2]]
+    }
+
+    fn scale(s: i64, p: P) -> P {
+        p.map(|x| s * x)
+    }
+
+    fn isub(x: P, y: P) -> [i128; 3] {
+        [0, 1, 2].map(|k| (x[k] - y[k]) as i128)
+    }
+
+    fn icross(u: [i128; 3], w: [i128; 3]) -> [i128; 3] {
+        [
+            u[1] * w[2] - u[2] * w[1],
+            u[2] * w[0] - u[0] * w[2],
+            u[0] * w[1] - u[1] * w[0],
+        ]
+    }
+
+    fn idot(u: [i128; 3], w: [i128; 3]) -> i128 {
+        u[0] * w[0] + u[1] * w[1] + u[2] * w[2]
+    }
+
+    /// Reference for the diametral-ball test in exact integers (coordinates below 2^17):
+    /// the sign of `d·m - |d|²|n|²`, positive strictly inside.
+    fn ball_ref(a: P, b: P, c: P, p: P) -> i32 {
+        let (u, w, d) = (isub(b, a), isub(c, a), isub(p, a));
+        let n = icross(u, w);
+        let (nxu, wxn) = (icross(n, u), icross(w, n));
+        let m = [0, 1, 2].map(|k| idot(w, w) * nxu[k] + idot(u, u) * wxn[k]);
+        (idot(d, m) - idot(d, d) * idot(n, n)).signum() as i32
+    }
+
+    /// An independent in-circle reference for points of the plane lattice `a + i·e1 + j·e2`:
+    /// the 2D lifted determinant in lattice coordinates with the lifting `Q(x) = xᵀGx` (G the
+    /// Gram matrix of e1, e2), which is the squared length in space; sign-corrected by the
+    /// orientation of the lattice coordinates.
+    fn lattice_incircle_ref(e1: P, e2: P, t: [[i64; 2]; 4]) -> i32 {
+        let (g11, g12, g22) = (
+            idot(isub(e1, [0; 3]), isub(e1, [0; 3])),
+            idot(isub(e1, [0; 3]), isub(e2, [0; 3])),
+            idot(isub(e2, [0; 3]), isub(e2, [0; 3])),
+        );
+        let p = t[3];
+        let rows = [0, 1, 2].map(|r| {
+            let x = (t[r][0] - p[0]) as i128;
+            let y = (t[r][1] - p[1]) as i128;
+            [x, y, g11 * x * x + 2 * g12 * x * y + g22 * y * y]
+        });
+        let det = idot(rows[0], icross(rows[1], rows[2]));
+        let orient = (t[1][0] - t[0][0]) as i128 * (t[2][1] - t[0][1]) as i128
+            - (t[1][1] - t[0][1]) as i128 * (t[2][0] - t[0][0]) as i128;
+        (det.signum() * orient.signum()) as i32
+    }
+
+    fn sign(x: f64) -> i32 {
+        if x > 0.0 {
+            1
+        } else if x < 0.0 {
+            -1
+        } else {
+            0
+        }
+    }
+
+    /// A small deterministic generator (splitmix64), so failures reproduce.
+    struct Rng(u64);
+
+    impl Rng {
+        fn next(&mut self) -> u64 {
+            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+            let mut z = self.0;
+            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+            z ^ (z >> 31)
+        }
+
+        /// Uniform in `-r..=r`.
+        fn int(&mut self, r: i64) -> i64 {
+            (self.next() % (2 * r as u64 + 1)) as i64 - r
+        }
+
+        fn point(&mut self, r: i64) -> P {
+            [self.int(r), self.int(r), self.int(r)]
+        }
+
+        fn unit(&mut self) -> f64 {
+            (self.next() >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        }
+    }
+
+    /// All integer vectors of squared length 81 (e.g. (1,4,8), (4,4,7), (3,6,6), (0,0,9) and
+    /// their signed permutations): lattice points on a sphere, for exact cospherical inputs.
+    fn norm81() -> Vec<P> {
+        let mut out = Vec::new();
+        for x in -9..=9i64 {
+            for y in -9..=9i64 {
+                for z in -9..=9i64 {
+                    if x * x + y * y + z * z == 81 {
+                        out.push([x, y, z]);
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    fn det3(u: P, v: P, w: P) -> i128 {
+        idot(isub(u, [0; 3]), icross(isub(v, [0; 3]), isub(w, [0; 3])))
+    }
+
+    /// The 48 signed axis permutations and a few integer quaternion similarities
+    /// (`|q|²` times a rotation), all exact on integer points.
+    fn similarities() -> Vec<[[i64; 3]; 3]> {
+        let mut out = Vec::new();
+        for perm in [
+            [0, 1, 2],
+            [1, 2, 0],
+            [2, 0, 1],
+            [0, 2, 1],
+            [2, 1, 0],
+            [1, 0, 2],
+        ] {
+            for signs in 0..8 {
+                let mut m = [[0; 3]; 3];
+                for (r, &col) in perm.iter().enumerate() {
+                    m[r][col] = if signs >> r & 1 == 1 { -1 } else { 1 };
+                }
+                out.push(m);
+            }
+        }
+        for [w, x, y, z] in [[1, 1, 1, 1], [2, 1, -1, 3], [1, 2, 3, 4], [3, -1, 0, 2]] {
+            out.push([
+                [
+                    w * w + x * x - y * y - z * z,
+                    2 * (x * y - w * z),
+                    2 * (x * z + w * y),
+                ],
+                [
+                    2 * (x * y + w * z),
+                    w * w - x * x + y * y - z * z,
+                    2 * (y * z - w * x),
+                ],
+                [
+                    2 * (x * z - w * y),
+                    2 * (y * z + w * x),
+                    w * w - x * x - y * y + z * z,
+                ],
+            ]);
+        }
+        out
+    }
+
+    fn apply(m: &[[i64; 3]; 3], p: P) -> P {
+        [0, 1, 2].map(|r| m[r][0] * p[0] + m[r][1] * p[1] + m[r][2] * p[2])
+    }
+
+    #[test]
+    fn projected_orientation_and_dominant_axis() {
+        let (a, b, c) = ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+        // Normal (0, 0, 1): only the z projection is non-degenerate, and positive.
+        assert!(orient2d_proj(a, b, c, 2) > 0.0);
+        assert_eq!(orient2d_proj(a, b, c, 0), 0.0);
+        assert_eq!(orient2d_proj(a, b, c, 1), 0.0);
+        assert_eq!(dominant_axis(a, b, c), 2);
+        // Normal (u×w) = (-4, 2, 1) for u = (1,2,0), w = (0,1,4)... checked per component.
+        let (a, b, c) = ([1.0, 1.0, 1.0], [2.0, 3.0, 1.0], [1.0, 2.0, 5.0]);
+        assert!(orient2d_proj(a, b, c, 0) > 0.0); // n_x = 2*4 - 0*1 = 8
+        assert!(orient2d_proj(a, b, c, 1) < 0.0); // n_y = 0*0 - 1*4 = -4
+        assert!(orient2d_proj(a, b, c, 2) > 0.0); // n_z = 1*1 - 2*0 = 1
+        assert_eq!(dominant_axis(a, b, c), 0);
+        // The projected sign is the normal component's sign on random integer triangles.
+        let mut rng = Rng(3);
+        for _ in 0..2000 {
+            let (a, b, c) = (rng.point(5), rng.point(5), rng.point(5));
+            let n = icross(isub(b, a), isub(c, a));
+            for (k, nk) in n.iter().enumerate() {
+                assert_eq!(
+                    sign(orient2d_proj(fl(a), fl(b), fl(c), k)),
+                    nk.signum() as i32
+                );
+            }
+            let k = dominant_axis(fl(a), fl(b), fl(c));
+            let largest = n.iter().map(|v| v.abs()).max().unwrap();
+            assert_eq!(n[k].abs(), largest, "{a:?} {b:?} {c:?}");
+        }
+    }
+
+    #[test]
+    fn facet_predicates_on_exact_circles_and_spheres() {
+        // a, b antipodal on a sphere of radius 9s about o, so the sphere is the diametral ball
+        // of abc for any c on it, and its great circle through a, b, c is abc's circumcircle.
+        let (o, s) = ([5, -3, 2], 3);
+        let vs = norm81();
+        let (v, v2) = ([1, 4, 8], [4, 4, 7]);
+        let (a, b, c) = (
+            add(o, scale(s, v)),
+            add(o, scale(-s, v)),
+            add(o, scale(s, v2)),
+        );
+        let (af, bf, cf) = (fl(a), fl(b), fl(c));
+        for &v3 in &vs {
+            let on = add(o, scale(s, v3));
+            assert!(
+                !in_diametral_ball_tri(af, bf, cf, fl(on)),
+                "{v3:?} is on the sphere"
+            );
+            let inside = add(o, scale(s - 1, v3));
+            assert!(in_diametral_ball_tri(af, bf, cf, fl(inside)));
+            assert!(!in_diametral_ball_tri(
+                af,
+                bf,
+                cf,
+                fl(add(o, scale(s + 1, v3)))
+            ));
+            // The segment ab's diametral ball is the same sphere.
+            assert!(!in_diametral_ball_seg3(af, bf, fl(on)));
+            assert!(in_diametral_ball_seg3(af, bf, fl(inside)));
+            if det3(v, v2, v3) == 0 {
+                for (x, y, z) in [(af, bf, cf), (bf, af, cf), (cf, bf, af)] {
+                    assert_eq!(incircle3d(x, y, z, fl(on)), 0.0, "{v3:?} is on the circle");
+                    assert!(incircle3d(x, y, z, fl(inside)) > 0.0);
+                    assert!(incircle3d(x, y, z, fl(add(o, scale(s + 1, v3)))) < 0.0);
+                }
+            }
+        }
+        assert!(in_diametral_ball_tri(af, bf, cf, fl(o)));
+        // Degenerate triangles have neither circumcircle nor diametral ball.
+        let (p, q, r) = ([0.0, 0.0, 0.0], [1.0, 1.0, 1.0], [3.0, 3.0, 3.0]);
+        assert_eq!(incircle3d(p, q, r, [1.0, 2.0, 3.0]), 0.0);
+        assert!(!in_diametral_ball_tri(p, q, r, [1.0, 1.0, 1.2]));
+        assert!(!in_diametral_ball_tri(p, p, p, p));
+    }
+
+    #[test]
+    fn diametral_ball_matches_i128_on_random_integers() {
+        let mut rng = Rng(5);
+        let (mut zeros, mut undecided) = (0, 0);
+        for i in 0..40_000 {
+            // Tiny ranges give many exactly cospherical inputs, large ones generic ones.
+            let r = if i % 2 == 0 { 4 } else { 1 << 16 };
+            let (a, b, c, p) = (rng.point(r), rng.point(r), rng.point(r), rng.point(r));
+            let want = ball_ref(a, b, c, p);
+            let (af, bf, cf, pf) = (fl(a), fl(b), fl(c), fl(p));
+            assert_eq!(
+                in_diametral_ball_tri(af, bf, cf, pf),
+                want > 0,
+                "{a:?} {b:?} {c:?} {p:?}"
+            );
+            assert_eq!(diametral_tri_exact(af, bf, cf, pf), want);
+            if let Some(s) = diametral_tri_filter(af, bf, cf, pf) {
+                assert_eq!(s, want, "the filter lied on {a:?} {b:?} {c:?} {p:?}");
+            } else {
+                undecided += 1;
+            }
+            zeros += usize::from(want == 0);
+        }
+        assert!(
+            zeros > 100 && undecided >= zeros,
+            "{zeros} zeros, {undecided} undecided"
+        );
+    }
+
+    #[test]
+    fn incircle3d_matches_lattice_reference_under_rotations() {
+        let mut rng = Rng(9);
+        let sims = similarities();
+        let mut counts = [0usize; 3];
+        for _ in 0..3000 {
+            let (origin, e1, e2) = (rng.point(200), rng.point(6), rng.point(6));
+            if icross(isub(e1, [0; 3]), isub(e2, [0; 3])) == [0; 3] {
+                continue;
+            }
+            let t = [0; 4].map(|_| [rng.int(3), rng.int(3)]);
+            let pts = t.map(|[i, j]| add(origin, add(scale(i, e1), scale(j, e2))));
+            let want = lattice_incircle_ref(e1, e2, t);
+            let [a, b, c, p] = pts;
+            // For coplanar p the circle test and the ball test agree.
+            let degenerate = icross(isub(b, a), isub(c, a)) == [0; 3];
+            if !degenerate {
+                assert_eq!(ball_ref(a, b, c, p), want);
+            }
+            counts[(want + 1) as usize] += 1;
+            for m in &sims {
+                let [a, b, c, p] = pts.map(|x| fl(apply(m, x)));
+                assert_eq!(sign(incircle3d(a, b, c, p)), want, "{pts:?} under {m:?}");
+                assert_eq!(sign(incircle3d(b, a, c, p)), want);
+            }
+        }
+        // All three answers occur often, so the test can fail each way.
+        assert!(counts.iter().all(|&n| n > 200), "{counts:?}");
+    }
+
+    #[test]
+    fn near_degenerate_large_coordinates_against_exact_distances() {
+        // Coordinates up to 2^51 (still exact integers) with a unit perturbation: the relative
+        // gap is ~2^-47, below what the float filter resolves, so the exact stage decides most.
+        let mut rng = Rng(13);
+        let vs = norm81();
+        let mut undecided = 0;
+        for _ in 0..3000 {
+            let o = rng.point(1 << 50);
+            let s = 1 + rng.int(1 << 46).abs();
+            let pick = |rng: &mut Rng| vs[rng.next() as usize % vs.len()];
+            let v = pick(&mut rng);
+            let v2 = loop {
+                let x = pick(&mut rng);
+                if icross(isub(x, [0; 3]), isub(v, [0; 3])) != [0; 3] {
+                    break x;
+                }
+            };
+            let (a, b, c) = (
+                add(o, scale(s, v)),
+                add(o, scale(-s, v)),
+                add(o, scale(s, v2)),
+            );
+            let (af, bf, cf) = (fl(a), fl(b), fl(c));
+            let r2 = (9 * s as i128).pow(2);
+            let dist2 = |p: P| isub(p, o).iter().map(|x| x * x).sum::<i128>();
+            // Off-plane: the ball test against |p - o|² vs R².
+            let v3 = pick(&mut rng);
+            let p = add(add(o, scale(s, v3)), rng.point(1));
+            let want = (r2 - dist2(p)).signum() as i32;
+            assert_eq!(
+                in_diametral_ball_tri(af, bf, cf, fl(p)),
+                want > 0,
+                "{o:?} {s} {p:?}"
+            );
+            undecided += usize::from(diametral_tri_filter(af, bf, cf, fl(p)).is_none());
+            // In-plane: the circle test, perturbing along the plane by a lattice vector.
+            let tv = [v, v2, add(v, v2), add(v, scale(-1, v2))][rng.next() as usize % 4];
+            let t = scale(rng.int(1), tv);
+            let p = add(add(o, scale(s, v2)), t);
+            let want = (r2 - dist2(p)).signum() as i32;
+            assert_eq!(sign(incircle3d(af, bf, cf, fl(p))), want, "{o:?} {s} {p:?}");
+            assert_eq!(sign(incircle3d(cf, bf, af, fl(p))), want);
+        }
+        assert!(undecided > 1000, "only {undecided} reached the exact stage");
+    }
+
+    #[test]
+    fn dyadic_similarity_keeps_decisions() {
+        // x -> 0.375 + x·2^-40 is exact on these coordinates and preserves every answer.
+        let mut rng = Rng(17);
+        let map = |p: P| p.map(|x| 0.375 + x as f64 * 2f64.powi(-40));
+        for _ in 0..5000 {
+            let (a, b, c, p) = (rng.point(5), rng.point(5), rng.point(5), rng.point(5));
+            let want = ball_ref(a, b, c, p) > 0;
+            assert_eq!(in_diametral_ball_tri(map(a), map(b), map(c), map(p)), want);
+            let want_seg = idot(isub(a, p), isub(b, p)) < 0;
+            assert_eq!(in_diametral_ball_seg3(map(a), map(b), map(p)), want_seg);
+        }
+    }
+
+    /// The circumcentre and squared radius in plain floats.
+    fn float_circumsphere(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> ([f64; 3], f64) {
+        let (u, w) = (sub3(b, a), sub3(c, a));
+        let n = cross3(u, w);
+        let (uu, ww, nn) = (dot3(u, u), dot3(w, w), dot3(n, n));
+        let (nxu, wxn) = (cross3(n, u), cross3(w, n));
+        let off = [0, 1, 2].map(|k| (ww * nxu[k] + uu * wxn[k]) / (2.0 * nn));
+        let o = [0, 1, 2].map(|k| a[k] + off[k]);
+        (o, dot3(off, off))
+    }
+
+    #[test]
+    fn float_formula_agrees_on_well_conditioned_inputs() {
+        let mut rng = Rng(19);
+        let mut checked = [0usize; 2];
+        for _ in 0..20_000 {
+            let [a, b, c, p] = [0; 4].map(|_| [rng.unit(), rng.unit(), rng.unit()]);
+            let (o, r2) = float_circumsphere(a, b, c);
+            let gap = r2 - dot3(sub3(p, o), sub3(p, o));
+            if gap.abs() > 1e-6 * r2 {
+                assert_eq!(in_diametral_ball_tri(a, b, c, p), gap > 0.0);
+                checked[usize::from(gap > 0.0)] += 1;
+            }
+            // A point of the plane (up to rounding), judged by its distance to the centre.
+            let (s, t) = (rng.unit(), rng.unit());
+            let q = [0, 1, 2].map(|k| a[k] + s * (b[k] - a[k]) + t * (c[k] - a[k]));
+            let gap = r2 - dot3(sub3(q, o), sub3(q, o));
+            if gap.abs() > 1e-6 * r2 {
+                assert_eq!(incircle3d(a, b, c, q) > 0.0, gap > 0.0);
+            }
+        }
+        assert!(checked.iter().all(|&n| n > 1000), "{checked:?}");
+    }
+
+    #[test]
+    fn filter_never_contradicts_exact_stage_near_the_sphere() {
+        let mut rng = Rng(23);
+        let mut undecided = 0;
+        for _ in 0..20_000 {
+            let [a, b, c] = [0; 3].map(|_| [rng.unit(), rng.unit(), rng.unit()].map(|x| x * 1e3));
+            let (o, r2) = float_circumsphere(a, b, c);
+            let dir = [rng.unit(), rng.unit(), rng.unit()];
+            let len = dot3(dir, dir).sqrt();
+            // On the sphere up to rounding: the sign is decided by the last bits.
+            let p = [0, 1, 2].map(|k| o[k] + dir[k] / len * r2.sqrt());
+            let exact = diametral_tri_exact(a, b, c, p);
+            assert_eq!(in_diametral_ball_tri(a, b, c, p), exact > 0);
+            match diametral_tri_filter(a, b, c, p) {
+                Some(s) => assert_eq!(s, exact),
+                None => undecided += 1,
+            }
+        }
+        assert!(undecided > 1000, "only {undecided} near-degenerate cases");
     }
 }

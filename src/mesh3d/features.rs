@@ -62,6 +62,8 @@ pub(crate) struct Features {
     /// Facets containing each feature vertex (input vertices of facets and Steiner points on
     /// facets or input edges).
     pub vert_facets: HashMap<u32, Vec<u32>>,
+    /// The input edge of each Steiner point made by splitting a subsegment.
+    pub split_edge: HashMap<u32, u32>,
     /// Per vertex: lies on a segment or facet (so simplices made only of such vertices may be
     /// features). A cheap filter before hash lookups.
     pub on_feature: Vec<bool>,
@@ -192,6 +194,7 @@ impl Features {
             seg_adj,
             subfaces: HashMap::new(),
             vert_facets,
+            split_edge: HashMap::new(),
             on_feature,
         })
     }
@@ -209,6 +212,7 @@ impl Features {
             }
         }
         self.seg_adj.insert(m, vec![a, b]);
+        self.split_edge.insert(m, e);
         let fs = self.edges[e as usize].facets.clone();
         self.vert_facets.insert(m, fs);
         self.mark_feature(m);
@@ -221,6 +225,16 @@ impl Features {
             self.on_feature.resize(i + 1, false);
         }
         self.on_feature[i] = true;
+    }
+
+    /// Whether the three vertices all lie on one input edge (a rounding-flat triangle).
+    pub fn on_one_edge(&self, t: [u32; 3]) -> bool {
+        let Some(e) = t.iter().find_map(|v| self.split_edge.get(v)) else {
+            return false;
+        };
+        let ends = self.edges[*e as usize].ends;
+        t.iter()
+            .all(|v| ends.contains(v) || self.split_edge.get(v) == Some(e))
     }
 
     /// Whether `v` lies on a feature.

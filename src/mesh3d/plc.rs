@@ -155,7 +155,7 @@ impl Mesher<'_> {
             let mut vs = self.feat.facets[f].vertices.clone();
             vs.sort_by_key(|&v| rank[v as usize]);
             for v in vs {
-                self.facet_insert(f as u32, v, false)
+                self.facet_insert(f as u32, v, false, None)
                     .map_err(|e| Error::Internal(format!("facet {f}: {e:?}")))?;
             }
         }
@@ -173,10 +173,17 @@ impl Mesher<'_> {
     }
 
     /// Inserts vertex `v` into facet `f`'s mesh and books the subface changes.
-    fn facet_insert(&mut self, f: u32, v: u32, provisional: bool) -> Result<(), FacetInsertError> {
+    fn facet_insert(
+        &mut self,
+        f: u32,
+        v: u32,
+        provisional: bool,
+        split_of: Option<[u32; 2]>,
+    ) -> Result<(), FacetInsertError> {
         let feat = &self.feat;
         let is_sub = |a: u32, b: u32| feat.subseg(a, b).is_some();
-        let ch = self.fmesh[f as usize].insert(v, &self.pts, provisional, &is_sub)?;
+        let flat = |t: [u32; 3]| feat.on_one_edge(t);
+        let ch = self.fmesh[f as usize].insert(v, &self.pts, provisional, &is_sub, &flat, split_of)?;
         for t in ch.removed {
             self.feat.subfaces.remove(&fkey(t));
         }
@@ -385,7 +392,7 @@ impl Mesher<'_> {
         self.seg_q.push_back(([m, b], false));
         let facets = self.feat.edges[e as usize].facets.clone();
         for f in facets {
-            self.facet_insert(f, m, false)
+            self.facet_insert(f, m, false, Some([a, b]))
                 .map_err(|err| Error::Internal(format!("segment split point in facet {f}: {err:?}")))?;
         }
         self.insert3d(m, false)
@@ -421,7 +428,7 @@ impl Mesher<'_> {
             return Err(Error::Internal(format!("degenerate subface {v:?}")));
         };
         let m = self.new_vertex(cc)?;
-        match self.facet_insert(fid, m, true) {
+        match self.facet_insert(fid, m, true, None) {
             Ok(()) => {}
             Err(FacetInsertError::Encroaches(segs)) => {
                 self.pts.pop();

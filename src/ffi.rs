@@ -120,27 +120,27 @@ pub struct idm_mesher2d {
 }
 
 /// A failed (or incomplete) call: the status to return and the message for `idm_last_error`.
-struct Failure {
+pub(crate) struct Failure {
     status: idm_status,
     message: String,
 }
 
 impl Failure {
-    fn new(status: idm_status, message: impl Into<String>) -> Self {
+    pub(crate) fn new(status: idm_status, message: impl Into<String>) -> Self {
         Failure {
             status,
             message: message.into(),
         }
     }
 
-    fn null(what: &str) -> Self {
+    pub(crate) fn null(what: &str) -> Self {
         Failure::new(
             idm_status::IDM_ERR_NULL_POINTER,
             format!("argument `{what}` is NULL"),
         )
     }
 
-    fn invalid(message: impl Into<String>) -> Self {
+    pub(crate) fn invalid(message: impl Into<String>) -> Self {
         Failure::new(idm_status::IDM_ERR_INVALID_ARGUMENT, message)
     }
 
@@ -193,7 +193,7 @@ fn clear_last_error() {
 
 /// Runs the body of a status-returning entry point: catches panics, maps the result to a
 /// status and records or clears the thread's last error.
-fn guard(body: impl FnOnce() -> CallResult) -> idm_status {
+pub(crate) fn guard(body: impl FnOnce() -> CallResult) -> idm_status {
     let outcome = catch_unwind(AssertUnwindSafe(body)).unwrap_or_else(|payload| {
         let what = payload
             .downcast_ref::<&str>()
@@ -215,7 +215,7 @@ fn guard(body: impl FnOnce() -> CallResult) -> idm_status {
 }
 
 /// `count * k`, or an error naming `what` when it overflows.
-fn scaled(count: usize, k: usize, what: &str) -> Result<usize, Failure> {
+pub(crate) fn scaled(count: usize, k: usize, what: &str) -> Result<usize, Failure> {
     count
         .checked_mul(k)
         .ok_or_else(|| Failure::invalid(format!("`{what}` = {count} is too large")))
@@ -227,7 +227,11 @@ fn scaled(count: usize, k: usize, what: &str) -> Result<usize, Failure> {
 /// # Safety
 /// When the checks pass, `ptr` must point to `len` readable elements that stay unchanged during
 /// the call (the caller's contract, documented in the header).
-unsafe fn input_slice<'a, T>(ptr: *const T, len: usize, what: &str) -> Result<&'a [T], Failure> {
+pub(crate) unsafe fn input_slice<'a, T>(
+    ptr: *const T,
+    len: usize,
+    what: &str,
+) -> Result<&'a [T], Failure> {
     if len == 0 {
         return Ok(&[]);
     }
@@ -258,7 +262,7 @@ unsafe fn input_slice<'a, T>(ptr: *const T, len: usize, what: &str) -> Result<&'
 ///
 /// # Safety
 /// As [`input_slice`].
-unsafe fn optional_slice<'a, T>(
+pub(crate) unsafe fn optional_slice<'a, T>(
     ptr: *const T,
     len: usize,
     what: &str,
@@ -272,7 +276,7 @@ unsafe fn optional_slice<'a, T>(
 }
 
 /// Checks an out-parameter pointer: non-NULL and aligned.
-fn check_out<T>(ptr: *mut T, what: &str) -> CallResult {
+pub(crate) fn check_out<T>(ptr: *mut T, what: &str) -> CallResult {
     if ptr.is_null() {
         Err(Failure::null(what))
     } else if !ptr.is_aligned() {
@@ -288,7 +292,7 @@ fn check_out<T>(ptr: *mut T, what: &str) -> CallResult {
 ///
 /// # Safety
 /// `ptr` must be NULL or valid for a write of `T`.
-unsafe fn write_out<T>(ptr: *mut T, value: T) {
+pub(crate) unsafe fn write_out<T>(ptr: *mut T, value: T) {
     if !ptr.is_null() {
         // SAFETY: the caller's contract.
         unsafe { ptr.write(value) };
@@ -316,7 +320,7 @@ unsafe fn mesh_of<'a>(m: *const idm_mesher2d) -> Result<&'a TriMesh, Failure> {
 
 /// Pointer to the first element of an output array, or NULL when it is empty (an empty `Vec`'s
 /// dangling pointer must not reach C code).
-fn array_ptr<T, U>(v: &[T]) -> *const U {
+pub(crate) fn array_ptr<T, U>(v: &[T]) -> *const U {
     if v.is_empty() {
         std::ptr::null()
     } else {
@@ -351,13 +355,13 @@ unsafe fn lend<T, U>(
 }
 
 /// Grows `v` by `extra` elements, reporting allocation failure instead of aborting.
-fn reserve<T>(v: &mut Vec<T>, extra: usize, what: &str) -> CallResult {
+pub(crate) fn reserve<T>(v: &mut Vec<T>, extra: usize, what: &str) -> CallResult {
     v.try_reserve(extra)
         .map_err(|_| Failure::invalid(format!("out of memory adding {extra} {what}")))
 }
 
 /// Rejects a count that would push the number of items past what `uint32_t` indices address.
-fn check_index_room(have: usize, extra: usize, what: &str) -> CallResult {
+pub(crate) fn check_index_room(have: usize, extra: usize, what: &str) -> CallResult {
     match have.checked_add(extra) {
         Some(total) if total < NONE as usize => Ok(()),
         _ => Err(Failure::invalid(format!(

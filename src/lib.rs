@@ -22,6 +22,7 @@
 pub mod error;
 pub mod exact;
 pub mod ffi;
+pub mod ffi3d;
 pub mod geometry;
 pub mod input;
 pub mod input3d;

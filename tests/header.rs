@@ -1,21 +1,23 @@
-//! Keeps `include/idmesh.h` in sync with `src/ffi.rs`: regenerates the header with the cbindgen
-//! library and fails when the checked-in file differs. `IDMESH_UPDATE_HEADER=1 cargo test
-//! --test header` rewrites the file instead.
+//! Keeps `include/idmesh.h` in sync with `src/ffi.rs` and `src/ffi3d.rs`: regenerates the
+//! header with the cbindgen library and fails when the checked-in file differs.
+//! `IDMESH_UPDATE_HEADER=1 cargo test --test header` rewrites the file instead.
 
 use std::path::Path;
 
-/// The header as cbindgen generates it from `src/ffi.rs` with `cbindgen.toml`.
+/// The header as cbindgen generates it from `src/ffi.rs` and `src/ffi3d.rs` (in that order)
+/// with `cbindgen.toml`.
 fn generate() -> String {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let config = cbindgen::Config::from_file(root.join("cbindgen.toml"))
         .unwrap_or_else(|e| panic!("cannot read cbindgen.toml: {e}"));
-    // Parsing only the FFI module keeps generation independent of the rest of the crate (and
+    // Parsing only the FFI modules keeps generation independent of the rest of the crate (and
     // avoids running `cargo metadata` inside the test).
     let bindings = cbindgen::Builder::new()
         .with_config(config)
         .with_src(root.join("src/ffi.rs"))
+        .with_src(root.join("src/ffi3d.rs"))
         .generate()
-        .unwrap_or_else(|e| panic!("cbindgen failed on src/ffi.rs: {e}"));
+        .unwrap_or_else(|e| panic!("cbindgen failed on src/ffi.rs + src/ffi3d.rs: {e}"));
     let mut out = Vec::new();
     bindings.write(&mut out);
     String::from_utf8(out).expect("cbindgen wrote non-UTF-8 text")
@@ -86,6 +88,32 @@ fn header_declares_the_whole_api() {
         "enum idm_status idm_mesher2d_segments(",
         "enum idm_status idm_mesher2d_validate(const struct idm_mesher2d *m);",
         "size_t count",
+        "typedef struct idm_options3d",
+        "typedef struct idm_stats3d",
+        "typedef struct idm_mesher3d idm_mesher3d;",
+        "typedef int32_t (*idm_sizing3d_fn)(",
+        "void idm_options3d_default(",
+        "enum idm_status idm_mesher3d_new(struct idm_mesher3d **out);",
+        "void idm_mesher3d_free(struct idm_mesher3d *m);",
+        "enum idm_status idm_mesher3d_add_points(",
+        "enum idm_status idm_mesher3d_add_segments(",
+        "enum idm_status idm_mesher3d_add_facet(",
+        "enum idm_status idm_mesher3d_add_hole(",
+        "enum idm_status idm_mesher3d_add_region(",
+        "enum idm_status idm_mesher3d_set_options(",
+        "enum idm_status idm_mesher3d_set_sizing(",
+        "enum idm_status idm_mesher3d_refine(struct idm_mesher3d *m);",
+        "enum idm_status idm_mesher3d_delaunay(struct idm_mesher3d *m);",
+        "enum idm_status idm_mesher3d_counts(",
+        "enum idm_status idm_mesher3d_vertices(",
+        "enum idm_status idm_mesher3d_vertex_markers(",
+        "enum idm_status idm_mesher3d_tets(",
+        "enum idm_status idm_mesher3d_neighbors(",
+        "enum idm_status idm_mesher3d_tet_attributes(",
+        "enum idm_status idm_mesher3d_faces(",
+        "enum idm_status idm_mesher3d_edges(",
+        "enum idm_status idm_mesher3d_stats(",
+        "enum idm_status idm_mesher3d_validate(const struct idm_mesher3d *m);",
     ] {
         assert!(h.contains(name), "generated header lacks `{name}`:\n{h}");
     }

@@ -45,6 +45,8 @@ pub(crate) struct FacetInfo {
     pub outline: Outline,
     /// Input vertices of the facet.
     pub vertices: Vec<u32>,
+    /// Three non-collinear input vertices spanning the facet's plane.
+    pub plane: [u32; 3],
 }
 
 /// All features of the PLC.
@@ -131,6 +133,7 @@ impl Features {
             verts.dedup();
             // A non-collinear triple gives the plane's dominant axis.
             let mut axis = None;
+            let mut plane = [0u32; 3];
             if let Some(&a) = verts.first() {
                 let pa = plc.points[a as usize];
                 'outer: for (j, &b) in verts.iter().enumerate().skip(1) {
@@ -138,6 +141,7 @@ impl Features {
                     for &c in verts.iter().skip(j + 1) {
                         if let Some(ax) = dominant_axis(pa, pb, plc.points[c as usize]) {
                             axis = Some(ax);
+                            plane = [a, b, c];
                             break 'outer;
                         }
                     }
@@ -173,6 +177,7 @@ impl Features {
                 axis,
                 outline: Outline { loops, convex },
                 vertices: verts,
+                plane,
             });
         }
         let mut on_feature = vec![false; n];

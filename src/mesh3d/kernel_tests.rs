@@ -5,7 +5,7 @@
 use std::collections::BTreeSet;
 
 use super::delaunay::build;
-use super::order::{brio_hilbert_order, hilbert_index};
+use super::order::{brio_hilbert_order, hilbert_index, hilbert_index_bits};
 use super::store::{in_circumcircle_coplanar, Located, Tets, FACE, GHOST};
 use super::{delaunay3d, TetMesh, NONE};
 use crate::error::{Error, InputError};
@@ -683,6 +683,28 @@ fn brio_order_is_a_permutation_and_hilbert_steps_are_unit() {
         let (p, q) = (w[0].unwrap(), w[1].unwrap());
         let d: u32 = (0..3).map(|k| p[k].abs_diff(q[k])).sum();
         assert_eq!(d, 1, "{p:?} -> {q:?}");
+    }
+}
+
+#[test]
+fn coarse_hilbert_curves_visit_every_cell_by_unit_steps() {
+    for bits in 1..=3u32 {
+        let side = 1u32 << bits;
+        let mut by_index = vec![None; (side * side * side) as usize];
+        for x in 0..side {
+            for y in 0..side {
+                for z in 0..side {
+                    let h = hilbert_index_bits([x, y, z], bits) as usize;
+                    assert!(by_index[h].is_none(), "bits {bits}: index {h} twice");
+                    by_index[h] = Some([x, y, z]);
+                }
+            }
+        }
+        for w in by_index.windows(2) {
+            let (p, q) = (w[0].unwrap(), w[1].unwrap());
+            let d: u32 = (0..3).map(|k| p[k].abs_diff(q[k])).sum();
+            assert_eq!(d, 1, "bits {bits}: {p:?} -> {q:?}");
+        }
     }
 }
 

@@ -61,8 +61,9 @@ pub fn brio_hilbert_order(points: &[[f64; 3]], seed: u64) -> Vec<u32> {
     pairs.into_iter().map(|(_, i)| i).collect()
 }
 
-/// The Hilbert index of each point, on a `2^21` grid over the points' bounding box (the same
-/// scale on every axis, so the curve follows the geometry).
+/// The Hilbert index of each point, on a grid over the points' bounding box with 8 to 64
+/// cells per point (at most `2^21` per axis) and the same scale on every axis, so the curve
+/// follows the geometry.
 pub fn hilbert_keys(points: &[[f64; 3]]) -> Vec<u64> {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
@@ -77,7 +78,11 @@ pub fn hilbert_keys(points: &[[f64; 3]]) -> Vec<u64> {
     let extent = (0..3)
         .map(|k| hi[k] - lo[k])
         .fold(0.0f64, |a, b| if b.is_finite() { a.max(b) } else { a });
-    let max = ((1u32 << BITS) - 1) as f64;
+    // One level finer than one cell per point (8 to 64 cells per point) is plenty for
+    // locality; fewer levels make the keys cheaper.
+    let levels = (usize::BITS - points.len().leading_zeros()).div_ceil(3) + 1;
+    let bits = levels.clamp(1, BITS);
+    let max = ((1u32 << bits) - 1) as f64;
     let scale = if extent > 0.0 { max / extent } else { 0.0 };
     points
         .iter()
@@ -91,27 +96,33 @@ pub fn hilbert_keys(points: &[[f64; 3]]) -> Vec<u64> {
                     0
                 }
             };
-            hilbert_index([cell(0), cell(1), cell(2)])
+            hilbert_index_bits([cell(0), cell(1), cell(2)], bits)
         })
         .collect()
 }
 
 /// Position of grid cell `x` (each coordinate below `2^21`) along the 3D Hilbert curve
-/// (Skilling's transpose algorithm, "Programming the Hilbert curve", 2004).
-pub fn hilbert_index(mut x: [u32; 3]) -> u64 {
-    let m = 1u32 << (BITS - 1);
+/// (Skilling's transpose algorithm, "Programming the Hilbert curve", 2004), written without
+/// data-dependent branches (they would be mispredicted half the time).
+pub fn hilbert_index(x: [u32; 3]) -> u64 {
+    hilbert_index_bits(x, BITS)
+}
+
+/// [`hilbert_index`] on a `2^bits` grid (`1 <= bits <= 21`): coordinates below `2^bits`, the
+/// result below `2^(3 bits)`.
+pub fn hilbert_index_bits(mut x: [u32; 3], bits: u32) -> u64 {
+    let m = 1u32 << (bits - 1);
     // Inverse undo of the excess work.
     let mut q = m;
     while q > 1 {
         let p = q - 1;
         for i in 0..3 {
-            if x[i] & q != 0 {
-                x[0] ^= p;
-            } else {
-                let t = (x[0] ^ x[i]) & p;
-                x[0] ^= t;
-                x[i] ^= t;
-            }
+            // All ones when bit q of x[i] is set: then invert the low bits of x[0], else
+            // exchange the low bits of x[0] and x[i] (a no-op for i = 0).
+            let set = 0u32.wrapping_sub((x[i] & q != 0) as u32);
+            let t = (x[0] ^ x[i]) & p & !set;
+            x[0] ^= (p & set) ^ t;
+            x[i] ^= t;
         }
         q >>= 1;
     }
@@ -121,15 +132,13 @@ pub fn hilbert_index(mut x: [u32; 3]) -> u64 {
     let mut t = 0;
     let mut q = m;
     while q > 1 {
-        if x[2] & q != 0 {
-            t ^= q - 1;
-        }
+        t ^= (q - 1) & 0u32.wrapping_sub((x[2] & q != 0) as u32);
         q >>= 1;
     }
     for xi in &mut x {
         *xi ^= t;
     }
-    // Interleave: the key's bits from the top are x0, x1, x2 of bit 20, then of bit 19, ...
+    // Interleave: the key's bits from the top are x0, x1, x2 of the top bit, then the next.
     (spread(x[0]) << 2) | (spread(x[1]) << 1) | spread(x[2])
 }
 

@@ -64,7 +64,11 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
     let fmesh = feat
         .facets
         .iter()
-        .map(|f| FacetMesh::new(f.axis, f.outline.clone()))
+        .map(|f| {
+            let vp: Vec<[f64; 3]> = f.vertices.iter().map(|&v| plc.points[v as usize]).collect();
+            let [a, b, c] = f.plane.map(|v| plc.points[v as usize]);
+            FacetMesh::new(f.axis, f.outline.clone(), FacetMesh::bounding_triangle(a, b, c, &vp))
+        })
         .collect();
     let mut m = Mesher {
         opts,
@@ -562,7 +566,13 @@ impl Mesher<'_> {
     fn seed_tet(&self, p: [f64; 3]) -> Option<u32> {
         match self.tets.locate(p, self.hint) {
             Located::InTet(t) if !self.tets.is_ghost(t) => Some(t),
-            _ => None,
+            Located::InTet(_) => None,
+            // A Steiner point landed exactly on the seed: any real tet around it will do.
+            Located::Vertex(v) => {
+                let mut star = Vec::new();
+                self.tets.star(v, &mut star);
+                star.into_iter().find(|&t| !self.tets.is_ghost(t))
+            }
         }
     }
 

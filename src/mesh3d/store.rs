@@ -93,10 +93,10 @@ pub struct Tets {
     tets: Vec<Tet>,
     free: Vec<TetId>,
     live: usize,
-    /// Cavity stamps: `mark[t] == epoch` in the pending cavity, `epoch + 1` tested and not in
-    /// conflict. Stamps avoid clearing anything between insertions.
-    mark: Vec<u32>,
-    epoch: u32,
+    /// Two bits per tet (32 tets per word): [`IN_CAVITY`], [`TESTED_OUT`] or 0. A bitmap stays
+    /// in cache where a per-tet stamp array would not; the bits set by one cavity search are
+    /// cleared from the cavity and boundary lists when it is cancelled or committed.
+    state: Vec<u64>,
     pending: bool,
     cavity_point: [f64; 3],
     cavity: Vec<TetId>,
@@ -104,10 +104,9 @@ pub struct Tets {
     /// Boundary faces copied out before the cavity's slots are recycled: `[a, b, c, outside]`.
     bface: Vec<[u32; 4]>,
     new_tets: Vec<TetId>,
-    /// Open-addressing table from a directed boundary edge to the new tet face holding it.
-    edge_keys: Vec<u64>,
-    edge_vals: Vec<u32>,
-    edge_stamp: Vec<u32>,
+    /// Open-addressing table from a directed boundary edge to the new tet face holding it;
+    /// slots with a stale stamp are empty, so the table is never cleared.
+    edges: Vec<EdgeSlot>,
     edge_epoch: u32,
 }
 
@@ -119,6 +118,136 @@ fn neighbor_ref(t: TetId, f: usize) -> u32 {
 #[inline]
 fn edge_hash(key: u64) -> u64 {
     key.wrapping_mul(0x9E37_79B9_7F4A_7C15)
+}
+
+/// One slot of the edge table of [`Tets::commit_cavity`].
+#[derive(Clone, Copy, Default)]
+struct EdgeSlot {
+    key: u64,
+    val: u32,
+    stamp: u32,
+}
+
+/// Cavity state of a tet: in the pending cavity.
+const IN_CAVITY: u64 = 1;
+/// Cavity state of a tet: tested against the pending point and not in conflict.
+const TESTED_OUT: u64 = 2;
+
+#[inline]
+fn get_state(state: &[u64], t: usize) -> u64 {
+    (state[t >> 5] >> ((t & 31) * 2)) & 3
+}
+
+#[inline]
+fn set_state(state: &mut [u64], t: usize, s: u64) {
+    let w = &mut state[t >> 5];
+    let sh = (t & 31) * 2;
+    *w = (*w & !(3 << sh)) | (s << sh);
+}
+
+/// Error-bound constants of Shewchuk's stage-A filters (ε = 2⁻⁵³).
+const EPS: f64 = f64::EPSILON * 0.5;
+const O3D_BOUND_A: f64 = (7.0 + 56.0 * EPS) * EPS;
+const ISP_BOUND_A: f64 = (16.0 + 224.0 * EPS) * EPS;
+
+/// [`orient3d`] with its floating-point filter inlined: when the rounded determinant clears
+/// Shewchuk's stage-A error bound its sign is exact and returned; otherwise the full adaptive
+/// predicate decides. Only the sign of the result is meaningful.
+#[inline(always)]
+fn orient3d_fast(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
+    let (adx, bdx, cdx) = (a[0] - d[0], b[0] - d[0], c[0] - d[0]);
+    let (ady, bdy, cdy) = (a[1] - d[1], b[1] - d[1], c[1] - d[1]);
+    let (adz, bdz, cdz) = (a[2] - d[2], b[2] - d[2], c[2] - d[2]);
+    let (bdxcdy, cdxbdy) = (bdx * cdy, cdx * bdy);
+    let (cdxady, adxcdy) = (cdx * ady, adx * cdy);
+    let (adxbdy, bdxady) = (adx * bdy, bdx * ady);
+    let det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+    let permanent = (bdxcdy.abs() + cdxbdy.abs()) * adz.abs()
+        + (cdxady.abs() + adxcdy.abs()) * bdz.abs()
+        + (adxbdy.abs() + bdxady.abs()) * cdz.abs();
+    let bound = O3D_BOUND_A * permanent;
+    if det > bound || -det > bound {
+        det
+    } else {
+        orient3d(a, b, c, d)
+    }
+}
+
+/// [`insphere`] with a cheaper floating-point filter inlined: Shewchuk's stage-A error bound
+/// with the permanent bounded from the largest coordinate differences (as in CGAL's static
+/// filters); when the rounded determinant clears it, its sign is exact. Otherwise the full
+/// adaptive predicate decides. Only the sign of the result is meaningful.
+#[inline(always)]
+fn insphere_fast(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3], e: [f64; 3]) -> f64 {
+    let (aex, bex, cex, dex) = (a[0] - e[0], b[0] - e[0], c[0] - e[0], d[0] - e[0]);
+    let (aey, bey, cey, dey) = (a[1] - e[1], b[1] - e[1], c[1] - e[1], d[1] - e[1]);
+    let (aez, bez, cez, dez) = (a[2] - e[2], b[2] - e[2], c[2] - e[2], d[2] - e[2]);
+    let (aexbey, bexaey) = (aex * bey, bex * aey);
+    let (bexcey, cexbey) = (bex * cey, cex * bey);
+    let (cexdey, dexcey) = (cex * dey, dex * cey);
+    let (dexaey, aexdey) = (dex * aey, aex * dey);
+    let (aexcey, cexaey) = (aex * cey, cex * aey);
+    let (bexdey, dexbey) = (bex * dey, dex * bey);
+    let ab = aexbey - bexaey;
+    let bc = bexcey - cexbey;
+    let cd = cexdey - dexcey;
+    let da = dexaey - aexdey;
+    let ac = aexcey - cexaey;
+    let bd = bexdey - dexbey;
+    let abc = aez * bc - bez * ac + cez * ab;
+    let bcd = bez * cd - cez * bd + dez * bc;
+    let cda = cez * da + dez * ac + aez * cd;
+    let dab = dez * ab + aez * bd + bez * da;
+    let alift = aex * aex + aey * aey + aez * aez;
+    let blift = bex * bex + bey * bey + bez * bez;
+    let clift = cex * cex + cey * cey + cez * cez;
+    let dlift = dex * dex + dey * dey + dez * dez;
+    let det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+    // Shewchuk's bound is ISP_BOUND_A times the permanent: the same sum with every product
+    // replaced by products of absolute values. Each of its 4 · 3 · 2 = 24 terms is at most
+    // mx · my · mz · (mx² + my² + mz²) for the largest absolute coordinate differences, so 24
+    // times that (plus a 1e-12 allowance for rounding in this product and in the permanent)
+    // bounds it, for a quarter of the work.
+    let mx = aex.abs().max(bex.abs()).max(cex.abs().max(dex.abs()));
+    let my = aey.abs().max(bey.abs()).max(cey.abs().max(dey.abs()));
+    let mz = aez.abs().max(bez.abs()).max(cez.abs().max(dez.abs()));
+    let permanent = 24.0 * (1.0 + 1e-12) * (mx * my * mz) * (mx * mx + my * my + mz * mz);
+    let bound = ISP_BOUND_A * permanent;
+    // A bound that underflowed proves nothing: leave those to the adaptive predicate.
+    if (det > bound || -det > bound) && bound > 1e-290 {
+        det
+    } else {
+        insphere(a, b, c, d, e)
+    }
+}
+
+/// Asks the CPU to start loading `r` into the cache (a hint; no effect on the program's
+/// meaning). The kernel's tets are visited in an order no hardware prefetcher can guess.
+#[inline(always)]
+fn prefetch<T>(r: &T) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: a prefetch has no architectural effect (it cannot fault or change memory), and
+    // `r` is a valid reference anyway; SSE is part of the x86_64 baseline.
+    unsafe {
+        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+        _mm_prefetch::<_MM_HINT_T0>((r as *const T).cast::<i8>());
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = r;
+}
+
+/// The conflict rule of [`Tets::conflict`] on the raw arrays (the cavity search's hot path).
+#[inline(always)]
+fn conflict_in(tets: &[Tet], pts: &[[f64; 3]], t: usize, p: [f64; 3]) -> bool {
+    let v = tets[t].v;
+    if v[0] == GHOST || v[1] == GHOST || v[2] == GHOST || v[3] == GHOST {
+        let k = v.iter().position(|&x| x == GHOST).unwrap_or(0);
+        let [a, b, c] = FACE[k].map(|i| pts[v[i] as usize]);
+        return ghost_conflict(a, b, c, p);
+    }
+    let [a, b, c, d] = v.map(|x| pts[x as usize]);
+    // Real tets have orient3d < 0, which flips Shewchuk's insphere sign.
+    insphere_fast(a, b, c, d, p) < 0.0
 }
 
 impl Tets {
@@ -133,17 +262,14 @@ impl Tets {
             tets: Vec::with_capacity(nt),
             free: Vec::with_capacity(256),
             live: 0,
-            mark: Vec::with_capacity(nt),
-            epoch: 0,
+            state: Vec::with_capacity(nt / 32 + 1),
             pending: false,
             cavity_point: [0.0; 3],
             cavity: Vec::with_capacity(256),
             boundary: Vec::with_capacity(512),
             bface: Vec::with_capacity(512),
             new_tets: Vec::with_capacity(512),
-            edge_keys: vec![0; 1024],
-            edge_vals: vec![0; 1024],
-            edge_stamp: vec![0; 1024],
+            edges: vec![EdgeSlot::default(); 1024],
             edge_epoch: 0,
         }
     }
@@ -226,14 +352,10 @@ impl Tets {
         let t = self.tets.len();
         assert!(t < MAX_SLOTS, "too many tetrahedra (more than 2^30)");
         self.tets.push(DEAD);
-        self.mark.push(0);
+        if t & 31 == 0 {
+            self.state.push(0);
+        }
         t as TetId
-    }
-
-    fn kill(&mut self, t: TetId) {
-        self.tets[t as usize] = DEAD;
-        self.free.push(t);
-        self.live -= 1;
     }
 
     /// Builds the first real tet on the four vertices (which must not be coplanar; they are
@@ -285,14 +407,7 @@ impl Tets {
     /// documentation). Exact.
     #[inline]
     pub fn conflict(&self, t: TetId, p: [f64; 3]) -> bool {
-        let v = self.tets[t as usize].v;
-        if let Some(k) = v.iter().position(|&x| x == GHOST) {
-            let [a, b, c] = FACE[k].map(|i| self.point(v[i]));
-            return ghost_conflict(a, b, c, p);
-        }
-        // Real tets have orient3d < 0, which flips Shewchuk's insphere sign.
-        let [a, b, c, d] = v.map(|x| self.point(x));
-        insphere(a, b, c, d, p) < 0.0
+        conflict_in(&self.tets, &self.pts, t as usize, p)
     }
 
     /// Finds a tet in conflict with `p`, walking from `hint` (any slot; a dead or out-of-range
@@ -316,7 +431,7 @@ impl Tets {
             let tet = &self.tets[t as usize];
             if let Some(k) = tet.v.iter().position(|&x| x == GHOST) {
                 let [a, b, c] = FACE[k].map(|i| self.point(tet.v[i]));
-                if orient3d(a, b, c, p) > 0.0 {
+                if orient3d_fast(a, b, c, p) > 0.0 {
                     return Located::InTet(t);
                 }
                 // Not beyond this hull triangle: continue inside the hull.
@@ -332,7 +447,7 @@ impl Tets {
                     continue;
                 }
                 let [a, b, c] = FACE[f].map(|i| self.point(tet.v[i]));
-                if orient3d(a, b, c, p) < 0.0 {
+                if orient3d_fast(a, b, c, p) < 0.0 {
                     let h = tet.n[f];
                     t = h >> 2;
                     came_from = (h & 3) as usize;
@@ -377,51 +492,70 @@ impl Tets {
         Located::InTet(beyond)
     }
 
-    fn next_epoch(&mut self) {
-        if self.epoch >= u32::MAX - 4 {
-            self.mark.iter_mut().for_each(|m| *m = 0);
-            self.epoch = 0;
+    /// Clears the cavity-state bits set by the last [`Tets::find_cavity`] (the cavity's tets
+    /// and the tested neighbours across its boundary) and forgets the cavity.
+    fn clear_cavity(&mut self) {
+        for &t in &self.cavity {
+            set_state(&mut self.state, t as usize, 0);
         }
-        self.epoch += 2;
+        for &h in &self.boundary {
+            let u = self.tets[(h >> 2) as usize].n[(h & 3) as usize] >> 2;
+            set_state(&mut self.state, u as usize, 0);
+        }
+        self.cavity.clear();
+        self.boundary.clear();
+        self.pending = false;
     }
 
     /// Collects the cavity of `p`: every tet in conflict with `p` that is connected to `start`
     /// through faces of conflicting tets, and the cavity's boundary. `start` must be in conflict
     /// with `p` (as returned by [`Tets::locate`]); if it is not, the cavity is left empty and
     /// `false` is returned. The mesh is not changed: follow with [`Tets::commit_cavity`] or
-    /// [`Tets::cancel_cavity`].
+    /// [`Tets::cancel_cavity`] (a new `find_cavity` also drops a pending cavity). Every tet must
+    /// have all four neighbours (the store is closed by ghosts).
     pub fn find_cavity(&mut self, p: [f64; 3], start: TetId) -> bool {
-        self.next_epoch();
-        self.cavity.clear();
-        self.boundary.clear();
+        self.clear_cavity();
         self.pending = true;
         self.cavity_point = p;
         if start as usize >= self.tets.len() || !self.alive(start) || !self.conflict(start, p) {
             return false;
         }
-        let epoch = self.epoch;
-        self.mark[start as usize] = epoch;
-        self.cavity.push(start);
+        let Tets {
+            tets,
+            pts,
+            state,
+            cavity,
+            boundary,
+            ..
+        } = self;
+        set_state(state, start as usize, IN_CAVITY);
+        cavity.push(start);
         let mut i = 0;
-        while i < self.cavity.len() {
-            let t = self.cavity[i];
+        // Each tet enters the cavity once, so the loop is bounded by the number of tets.
+        while i < cavity.len() {
+            let t = cavity[i];
             i += 1;
-            let n = self.tets[t as usize].n;
+            let n = tets[t as usize].n;
             for (f, &h) in n.iter().enumerate() {
                 let u = (h >> 2) as usize;
-                let m = self.mark[u];
-                if m == epoch {
-                    continue;
-                }
-                if m != epoch + 1 {
-                    if self.conflict(u as TetId, p) {
-                        self.mark[u] = epoch;
-                        self.cavity.push(u as TetId);
-                        continue;
+                match get_state(state, u) {
+                    IN_CAVITY => continue,
+                    TESTED_OUT => {}
+                    _ => {
+                        if conflict_in(tets, pts, u, p) {
+                            set_state(state, u, IN_CAVITY);
+                            cavity.push(u as TetId);
+                            // u's neighbours are tested when u's turn comes: start loading
+                            // them now, so the cache misses overlap with other tests.
+                            for h in tets[u].n {
+                                prefetch(&tets[(h >> 2) as usize]);
+                            }
+                            continue;
+                        }
+                        set_state(state, u, TESTED_OUT);
                     }
-                    self.mark[u] = epoch + 1;
                 }
-                self.boundary.push(neighbor_ref(t, f));
+                boundary.push(neighbor_ref(t, f));
             }
         }
         true
@@ -443,15 +577,12 @@ impl Tets {
     /// Whether `t` is in the pending cavity (O(1)).
     #[inline]
     pub fn in_cavity(&self, t: TetId) -> bool {
-        self.pending && self.mark[t as usize] == self.epoch
+        get_state(&self.state, t as usize) == IN_CAVITY
     }
 
     /// Drops the pending cavity; the mesh is unchanged.
     pub fn cancel_cavity(&mut self) {
-        self.cavity.clear();
-        self.boundary.clear();
-        self.pending = false;
-        self.next_epoch();
+        self.clear_cavity();
     }
 
     /// Replaces the pending cavity by the tets joining `v` to each boundary face, and returns
@@ -465,108 +596,143 @@ impl Tets {
         );
         self.new_tets.clear();
         if self.cavity.is_empty() {
-            self.pending = false;
-            self.next_epoch();
+            self.clear_cavity();
             return &self.new_tets;
         }
-        // Copy the boundary faces out first: the cavity's slots are recycled for the new tets.
-        self.bface.clear();
-        for &h in &self.boundary {
-            let tet = &self.tets[(h >> 2) as usize];
-            let f = (h & 3) as usize;
-            let [a, b, c] = FACE[f].map(|i| tet.v[i]);
-            self.bface.push([a, b, c, tet.n[f]]);
-        }
-        for i in 0..self.cavity.len() {
-            let t = self.cavity[i];
-            self.kill(t);
-        }
-        self.cavity.clear();
-        self.boundary.clear();
-
-        // Room in the edge table for 3 directed edges per face at load <= 1/4.
-        let need = (self.bface.len() * 12).next_power_of_two().max(64);
-        if need > self.edge_keys.len() {
-            self.edge_keys = vec![0; need];
-            self.edge_vals = vec![0; need];
-            self.edge_stamp = vec![0; need];
+        // Room in the edge table for 3 directed edges per face at load <= 1/8, so that nearly
+        // every key sits in its home slot and the probe loops below rarely iterate.
+        let need = (self.boundary.len() * 24).next_power_of_two().max(64);
+        if need > self.edges.len() {
+            self.edges = vec![EdgeSlot::default(); need];
             self.edge_epoch = 0;
         }
         self.edge_epoch = self.edge_epoch.wrapping_add(1);
         if self.edge_epoch == 0 {
-            self.edge_stamp.iter_mut().for_each(|s| *s = 0);
+            self.edges.iter_mut().for_each(|e| e.stamp = 0);
             self.edge_epoch = 1;
         }
-        let mask = (self.edge_keys.len() - 1) as u64;
-        let shift = 64 - self.edge_keys.len().trailing_zeros();
+        let Tets {
+            tets,
+            vtet,
+            ghost_tet,
+            free,
+            live,
+            state,
+            cavity,
+            boundary,
+            bface,
+            new_tets,
+            edges,
+            edge_epoch,
+            ..
+        } = self;
+        // Copy the boundary faces out first: the cavity's slots are recycled for the new tets.
+        bface.clear();
+        for &h in boundary.iter() {
+            let tet = &tets[(h >> 2) as usize];
+            let f = (h & 3) as usize;
+            let [a, b, c] = FACE[f].map(|i| tet.v[i]);
+            let outside = tet.n[f];
+            set_state(state, (outside >> 2) as usize, 0);
+            bface.push([a, b, c, outside]);
+        }
+        for &t in cavity.iter() {
+            set_state(state, t as usize, 0);
+            tets[t as usize] = DEAD;
+            free.push(t);
+        }
+        *live -= cavity.len();
+        cavity.clear();
+        boundary.clear();
 
-        for k in 0..self.bface.len() {
-            let [a, b, c, outside] = self.bface[k];
-            let nt = self.alloc();
+        let epoch = *edge_epoch;
+        let mask = edges.len() - 1;
+        let shift = 64 - edges.len().trailing_zeros();
+        for &[a, b, c, outside] in bface.iter() {
+            let nt = match free.pop() {
+                Some(t) => t,
+                None => {
+                    let t = tets.len();
+                    assert!(t < MAX_SLOTS, "too many tetrahedra (more than 2^30)");
+                    tets.push(DEAD);
+                    if t & 31 == 0 {
+                        state.push(0);
+                    }
+                    t as TetId
+                }
+            };
+            *live += 1;
             // [v, a, b, c] is positive: (a, b, c) is outward for a cavity tet and v is inside.
-            self.tets[nt as usize] = Tet {
+            tets[nt as usize] = Tet {
                 v: [v, a, b, c],
                 n: [outside, NONE, NONE, NONE],
             };
-            self.tets[(outside >> 2) as usize].n[(outside & 3) as usize] = neighbor_ref(nt, 0);
-            self.new_tets.push(nt);
+            tets[(outside >> 2) as usize].n[(outside & 3) as usize] = neighbor_ref(nt, 0);
+            new_tets.push(nt);
             // Face j (1..=3) holds the directed boundary edge below; the neighbouring new tet
-            // holds the same edge reversed.
-            for (j, (x, y)) in [(1, (b, c)), (2, (c, a)), (3, (a, b))] {
-                let here = neighbor_ref(nt, j);
-                let want = ((y as u64) << 32) | x as u64;
-                let mut s = (edge_hash(want) >> shift) & mask;
-                let mut linked = false;
-                while self.edge_stamp[s as usize] == self.edge_epoch {
-                    if self.edge_keys[s as usize] == want {
-                        let there = self.edge_vals[s as usize];
-                        self.tets[nt as usize].n[j] = there;
-                        self.tets[(there >> 2) as usize].n[(there & 3) as usize] = here;
-                        // Each directed edge is matched once; the slot stays as a tombstone.
-                        self.edge_keys[s as usize] = u64::MAX;
-                        linked = true;
-                        break;
-                    }
+            // holds the same edge reversed. File every half now, link them in a second pass:
+            // that keeps the branches predictable (insert always finds a free slot, lookup
+            // always finds its partner).
+            for (j, x, y) in [(1, b, c), (2, c, a), (3, a, b)] {
+                let key = ((x as u64) << 32) | y as u64;
+                let mut s = (edge_hash(key) >> shift) as usize & mask;
+                while edges[s].stamp == epoch {
                     s = (s + 1) & mask;
                 }
-                if !linked {
-                    let key = ((x as u64) << 32) | y as u64;
-                    let mut s = (edge_hash(key) >> shift) & mask;
-                    while self.edge_stamp[s as usize] == self.edge_epoch {
-                        s = (s + 1) & mask;
-                    }
-                    self.edge_stamp[s as usize] = self.edge_epoch;
-                    self.edge_keys[s as usize] = key;
-                    self.edge_vals[s as usize] = here;
-                }
+                edges[s] = EdgeSlot {
+                    key,
+                    val: neighbor_ref(nt, j),
+                    stamp: epoch,
+                };
             }
             for x in [a, b, c] {
                 if x == GHOST {
-                    self.ghost_tet = nt;
+                    *ghost_tet = nt;
                 } else {
-                    self.vtet[x as usize] = nt;
+                    vtet[x as usize] = nt;
                 }
             }
         }
-        self.vtet[v as usize] = self.new_tets[0];
+        for &nt in new_tets.iter() {
+            let [_, a, b, c] = tets[nt as usize].v;
+            for (j, x, y) in [(1, b, c), (2, c, a), (3, a, b)] {
+                let want = ((y as u64) << 32) | x as u64;
+                let mut s = (edge_hash(want) >> shift) as usize & mask;
+                // The boundary is a closed surface, so the partner is there; the stamp test
+                // only guards against a corrupted cavity looping forever.
+                while edges[s].key != want && edges[s].stamp == epoch {
+                    s = (s + 1) & mask;
+                }
+                if edges[s].stamp == epoch {
+                    tets[nt as usize].n[j] = edges[s].val;
+                }
+            }
+        }
+        vtet[v as usize] = new_tets[0];
+        self.pending = false;
         #[cfg(debug_assertions)]
+        self.debug_check_new_tets(v);
+        &self.new_tets
+    }
+
+    /// Debug check of a commit: every new tet is linked on all faces and every new real tet is
+    /// positively oriented, i.e. the cavity was a star-shaped ball around `v`.
+    #[cfg(debug_assertions)]
+    fn debug_check_new_tets(&self, v: VertexId) {
         for &t in &self.new_tets {
-            let tv = self.tets[t as usize].v;
-            debug_assert!(
-                !tv.contains(&NONE) && !self.tets[t as usize].n.contains(&NONE),
+            let tet = &self.tets[t as usize];
+            assert!(
+                !tet.n.contains(&NONE),
                 "cavity of vertex {v} is not a topological ball (new tet {t} left unlinked)"
             );
-            if !tv.contains(&GHOST) {
-                let [a, b, c, d] = tv.map(|x| self.point(x));
-                debug_assert!(
+            if !tet.v.contains(&GHOST) {
+                let [a, b, c, d] = tet.v.map(|x| self.point(x));
+                assert!(
                     orient3d(a, b, c, d) < 0.0,
                     "cavity of vertex {v} is not star-shaped (new tet {t} is flat or inverted)"
                 );
             }
         }
-        self.pending = false;
-        self.next_epoch();
-        &self.new_tets
     }
 
     /// Inserts vertex `v` (pushed, not yet inserted): locate from `hint`, find the cavity,

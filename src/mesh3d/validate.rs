@@ -212,7 +212,7 @@ impl Grid3 {
                 hi[k] = hi[k].max(p[k]);
             }
         }
-        let g = ((pts.len() as f64 / 2.0).cbrt().ceil() as usize).clamp(1, 256);
+        let g = ((pts.len() as f64).cbrt().ceil() as usize).clamp(1, 320);
         let w = [0, 1, 2].map(|k| ((hi[k] - lo[k]) / g as f64).max(f64::MIN_POSITIVE));
         let tol = [0, 1, 2].map(|k| 1e-9 * w[k] + 1e-14 * (lo[k].abs() + hi[k].abs()));
         let mut grid = Grid3 {
@@ -313,9 +313,19 @@ fn check_empty_spheres(m: &TetMesh) -> Result<(), String> {
     for (t, tv) in m.tets.iter().enumerate() {
         let c = tv.map(p);
         let [a, b, cc, d] = c;
+        let query = sphere_query(c);
+        // Points surely outside the widened ball need no exact test.
+        let (center, reach2) = match query {
+            Some((center, r)) => (center, r * r * (1.0 + 1e-9)),
+            None => ([0.0; 3], f64::INFINITY),
+        };
         let test = |w: u32| {
+            let q = p(w);
+            if dist2_3(center, q) > reach2 {
+                return Ok(());
+            }
             // Real tets have orient3d < 0, which flips Shewchuk's insphere sign.
-            if !tv.contains(&w) && insphere(a, b, cc, d, p(w)) < 0.0 {
+            if !tv.contains(&w) && insphere(a, b, cc, d, q) < 0.0 {
                 Err(format!(
                     "vertex {w} lies strictly inside the circumsphere of tet {t} {tv:?}"
                 ))
@@ -323,7 +333,7 @@ fn check_empty_spheres(m: &TetMesh) -> Result<(), String> {
                 Ok(())
             }
         };
-        match sphere_query(c) {
+        match query {
             Some((center, r)) => grid.for_each_in_ball(center, r, test)?,
             None => (0..m.vertices.len() as u32).try_for_each(test)?,
         }

@@ -1,6 +1,8 @@
 //! Exact sign of small polynomial expressions in floating-point inputs, by floating-point
 //! expansions (Shewchuk's two-sum / two-product). Used behind a fast filter where `robust`
-//! has no ready-made predicate (the dot-product sign of the encroachment test).
+//! has no ready-made predicate: the fixed [`Expansion`] for the dot-product sign of the
+//! encroachment tests, the growable [`DynExpansion`] for the degree-6 facet predicates of 3D
+//! meshing (`predicates::in_diametral_ball_tri`).
 
 /// `a + b = hi + lo` exactly.
 #[inline]
@@ -128,24 +130,99 @@ pub fn dot_sign_3d(a: [f64; 3], b: [f64; 3], p: [f64; 3]) -> i32 {
     e.sign()
 }
 
+/// How many components a [`DynExpansion`] keeps inline before moving to the heap: enough for
+/// every intermediate of the degree-6 facet predicates on ordinary inputs (they stay under a
+/// dozen terms), so the exact stage normally does not allocate.
+const INLINE: usize = 16;
+
+/// Component storage with a small inline buffer and a heap fallback of unbounded length.
+#[derive(Clone, Debug)]
+enum Terms {
+    Inline(usize, [f64; INLINE]),
+    Heap(Vec<f64>),
+}
+
+impl Terms {
+    fn with_capacity(n: usize) -> Self {
+        if n <= INLINE {
+            Terms::Inline(0, [0.0; INLINE])
+        } else {
+            Terms::Heap(Vec::with_capacity(n))
+        }
+    }
+
+    fn push(&mut self, x: f64) {
+        match self {
+            Terms::Inline(len, buf) if *len < INLINE => {
+                buf[*len] = x;
+                *len += 1;
+            }
+            Terms::Inline(_, buf) => {
+                let mut v = Vec::with_capacity(2 * INLINE);
+                v.extend_from_slice(buf);
+                v.push(x);
+                *self = Terms::Heap(v);
+            }
+            Terms::Heap(v) => v.push(x),
+        }
+    }
+
+    fn as_slice(&self) -> &[f64] {
+        match self {
+            Terms::Inline(len, buf) => &buf[..*len],
+            Terms::Heap(v) => v,
+        }
+    }
+
+    fn as_mut_slice(&mut self) -> &mut [f64] {
+        match self {
+            Terms::Inline(len, buf) => &mut buf[..*len],
+            Terms::Heap(v) => v,
+        }
+    }
+
+    fn truncate(&mut self, n: usize) {
+        match self {
+            Terms::Inline(len, _) => *len = (*len).min(n),
+            Terms::Heap(v) => v.truncate(n),
+        }
+    }
+}
+
 /// An exact real number as a growable expansion: a sum of non-overlapping, non-zero doubles
 /// stored in increasing magnitude (Shewchuk's representation), so the largest term alone gives
 /// the sign. Unlike the fixed [`Expansion`], it has no length bound, which is what products of
-/// degree six need (the 3D facet predicates). It is meant for the rare exact stage behind a
-/// float filter: every operation allocates its result.
+/// degree six need (the 3D facet predicates). It is meant for the exact stage behind a float
+/// filter: results of up to 16 components live inline, longer ones on the heap.
 ///
 /// Exact barring overflow and underflow (like all of Shewchuk's arithmetic); relies on IEEE
 /// round-to-nearest-even, which Rust guarantees for `f64`.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct DynExpansion {
     /// Zero-free, non-overlapping, increasing magnitude; empty means zero.
-    terms: Vec<f64>,
+    terms: Terms,
+}
+
+impl Default for DynExpansion {
+    fn default() -> Self {
+        Self::zero()
+    }
+}
+
+/// Equality of the component lists, not of the values: equal values may be split into
+/// components differently (compare values with `a.sub(&b).sign() == 0`).
+impl PartialEq for DynExpansion {
+    fn eq(&self, other: &Self) -> bool {
+        self.terms() == other.terms()
+    }
 }
 
 impl DynExpansion {
     /// Zero.
     pub fn zero() -> Self {
-        DynExpansion { terms: Vec::new() }
+        DynExpansion {
+            terms: Terms::with_capacity(0),
+        }
     }
 
     /// The double `x` exactly.
@@ -167,18 +244,23 @@ impl DynExpansion {
 
     /// `hi + lo` where `lo` is the rounding error of `hi` (already non-overlapping).
     fn from_pair(hi: f64, lo: f64) -> Self {
-        let terms = [lo, hi].into_iter().filter(|&t| t != 0.0).collect();
+        let mut terms = Terms::with_capacity(2);
+        for t in [lo, hi] {
+            if t != 0.0 {
+                terms.push(t);
+            }
+        }
         DynExpansion { terms }
     }
 
     /// The components, smallest magnitude first (empty for zero).
     pub fn terms(&self) -> &[f64] {
-        &self.terms
+        self.terms.as_slice()
     }
 
     /// The sign of the exact value: -1, 0 or 1.
     pub fn sign(&self) -> i32 {
-        match self.terms.last() {
+        match self.terms().last() {
             Some(&v) if v > 0.0 => 1,
             Some(&v) if v < 0.0 => -1,
             _ => 0,
@@ -188,36 +270,33 @@ impl DynExpansion {
     /// A double close to the exact value (the rounded sum of the components); only for
     /// magnitudes, never for decisions.
     pub fn estimate(&self) -> f64 {
-        self.terms.iter().sum()
+        self.terms().iter().sum()
     }
 
-    /// The exact sum (Shewchuk's Fast-Expansion-Sum with zero elimination: merge by magnitude,
-    /// then one Two-Sum sweep).
+    /// The exact sum (Shewchuk's Fast-Expansion-Sum with zero elimination: the components of
+    /// both, taken in increasing magnitude, run through one Two-Sum sweep).
     pub fn add(&self, other: &DynExpansion) -> DynExpansion {
-        let (e, f) = (&self.terms, &other.terms);
+        let (e, f) = (self.terms(), other.terms());
         if e.is_empty() {
             return other.clone();
         }
         if f.is_empty() {
             return self.clone();
         }
-        let mut merged = Vec::with_capacity(e.len() + f.len());
         let (mut i, mut j) = (0, 0);
-        while i < e.len() && j < f.len() {
-            if e[i].abs() < f[j].abs() {
-                merged.push(e[i]);
+        let mut next = || {
+            if j == f.len() || (i < e.len() && e[i].abs() < f[j].abs()) {
                 i += 1;
+                e[i - 1]
             } else {
-                merged.push(f[j]);
                 j += 1;
+                f[j - 1]
             }
-        }
-        merged.extend_from_slice(&e[i..]);
-        merged.extend_from_slice(&f[j..]);
-        let mut out = Vec::with_capacity(merged.len());
-        let mut q = merged[0];
-        for &g in &merged[1..] {
-            let (s, err) = two_sum(q, g);
+        };
+        let mut out = Terms::with_capacity(e.len() + f.len());
+        let mut q = next();
+        for _ in 1..e.len() + f.len() {
+            let (s, err) = two_sum(q, next());
             if err != 0.0 {
                 out.push(err);
             }
@@ -231,9 +310,11 @@ impl DynExpansion {
 
     /// The exact negation.
     pub fn neg(&self) -> DynExpansion {
-        DynExpansion {
-            terms: self.terms.iter().map(|&t| -t).collect(),
+        let mut out = self.clone();
+        for t in out.terms.as_mut_slice() {
+            *t = -*t;
         }
+        out
     }
 
     /// The exact difference `self - other`.
@@ -243,8 +324,8 @@ impl DynExpansion {
 
     /// The exact product with one double (Shewchuk's Scale-Expansion with zero elimination).
     pub fn scale(&self, b: f64) -> DynExpansion {
-        let mut out = Vec::with_capacity(2 * self.terms.len());
-        let Some((&first, rest)) = self.terms.split_first() else {
+        let mut out = Terms::with_capacity(2 * self.terms().len());
+        let Some((&first, rest)) = self.terms().split_first() else {
             return DynExpansion::zero();
         };
         let (mut q, lo) = two_prod(first, b);
@@ -273,54 +354,59 @@ impl DynExpansion {
     /// other, the partial products are summed, and the result is compressed so that chains of
     /// products stay short.
     pub fn mul(&self, other: &DynExpansion) -> DynExpansion {
-        let (long, short) = if self.terms.len() >= other.terms.len() {
+        let (long, short) = if self.terms().len() >= other.terms().len() {
             (self, other)
         } else {
             (other, self)
         };
-        let mut acc = DynExpansion::zero();
-        for &t in &short.terms {
+        let Some((&first, rest)) = short.terms().split_first() else {
+            return DynExpansion::zero();
+        };
+        let mut acc = long.scale(first);
+        for &t in rest {
             acc = acc.add(&long.scale(t));
         }
         acc.compress();
         acc
     }
 
-    /// Rewrites the expansion with as few components as its value allows (Shewchuk's
-    /// Compress); the value is unchanged.
+    /// Rewrites the expansion in place with as few components as its value allows
+    /// (Shewchuk's Compress); the value is unchanged. Both sweeps only overwrite components
+    /// they have already consumed, so no buffer is needed.
     pub fn compress(&mut self) {
-        let e = &self.terms;
-        if e.len() < 2 {
+        let len = self.terms().len();
+        if len < 2 {
             return;
         }
-        // Top-down sweep: gather the large parts, keeping the carries below them.
-        let mut g = vec![0.0; e.len()];
-        let mut bottom = e.len() - 1;
+        let e = self.terms.as_mut_slice();
+        // Top-down sweep: gather the large parts at the top, carrying the remainders down.
+        let mut bottom = len - 1;
         let mut q = e[bottom];
-        for &t in e[..e.len() - 1].iter().rev() {
-            let (s, err) = two_sum(q, t);
+        for i in (0..len - 1).rev() {
+            let (s, err) = two_sum(q, e[i]);
             if err != 0.0 {
-                g[bottom] = s;
+                e[bottom] = s;
                 bottom -= 1;
                 q = err;
             } else {
                 q = s;
             }
         }
-        g[bottom] = q;
-        // Bottom-up sweep: the final non-overlapping components, zero-free.
-        let mut out = Vec::with_capacity(e.len() - bottom);
-        for &h in &g[bottom + 1..] {
-            let (s, err) = two_sum(h, q);
+        // Bottom-up sweep: the final non-overlapping components, zero-free, packed at the start.
+        let mut top = 0;
+        for h in bottom + 1..len {
+            let (s, err) = two_sum(e[h], q);
             if err != 0.0 {
-                out.push(err);
+                e[top] = err;
+                top += 1;
             }
             q = s;
         }
         if q != 0.0 {
-            out.push(q);
+            e[top] = q;
+            top += 1;
         }
-        self.terms = out;
+        self.terms.truncate(top);
     }
 }
 
@@ -482,5 +568,33 @@ mod tests {
             .add(&DynExpansion::from_f64(1.0))
             .sub(&DynExpansion::from_f64(1e300));
         assert_eq!(tiny.terms(), &[1.0]);
+    }
+
+    #[test]
+    fn dyn_expansion_spills_to_the_heap_exactly() {
+        // 18 components 2^54 apart (from 2^500 down, so products stay clear of underflow):
+        // longer than the inline buffer, and long products.
+        let mut a = DynExpansion::zero();
+        let mut b = DynExpansion::zero();
+        for k in 0..18 {
+            a = a.add(&DynExpansion::from_f64(3.0 * 2f64.powi(500 - 54 * k)));
+            b = b.add(&DynExpansion::from_f64(-5.0 * 2f64.powi(500 - 54 * k - 17)));
+        }
+        assert_eq!(a.terms().len(), 18);
+        assert!(a.terms().len() > INLINE);
+        // (a + b)^2 - a^2 - 2ab - b^2 and (a + b)(a - b) - (a^2 - b^2) are exactly zero.
+        let (aa, bb, ab) = (a.mul(&a), b.mul(&b), a.mul(&b));
+        let s = a.add(&b);
+        assert_eq!(s.mul(&s).sub(&aa).sub(&ab.scale(2.0)).sub(&bb).sign(), 0);
+        assert_eq!(s.mul(&a.sub(&b)).sub(&aa.sub(&bb)).sign(), 0);
+        // ... and a change far below the leading bits is still seen.
+        let smallest = DynExpansion::from_f64(aa.terms()[0].abs() / 4.0);
+        assert_eq!(aa.sub(&aa.add(&smallest)).sign(), -1);
+        assert_eq!(aa.add(&smallest).sub(&aa), smallest);
+        let mut c = s.mul(&s);
+        let before = c.clone();
+        c.compress();
+        assert_eq!(c.sub(&before).sign(), 0);
+        assert_eq!(c.neg().add(&before).sign(), 0);
     }
 }

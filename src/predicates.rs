@@ -79,7 +79,8 @@ pub fn orient2d_proj(a: [f64; 3], b: [f64; 3], c: [f64; 3], axis: usize) -> f64 
 }
 
 /// The coordinate axis along which the triangle `abc` projects best: the largest magnitude
-/// among the three exact-sign projected orientations ([`orient2d_proj`]), ties going to z,
+/// among the three exact-sign projected orientations ([`orient2d_proj`], whose magnitudes
+/// approximate the normal's components and are zero exactly when they are), ties going to z,
 /// then x, then y. Deterministic in `a, b, c`, and for any non-degenerate triangle the chosen
 /// normal component is exactly non-zero, so projecting along it never flattens the triangle.
 /// For a degenerate (collinear) triangle every component is zero and the answer is 2.
@@ -126,7 +127,9 @@ pub fn incircle3d(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3]) -> f64 {
         return 0.0;
     }
     let s = insphere(a, b, c, q, p);
-    if o > 0.0 {
+    if s == 0.0 {
+        0.0 // never -0.0, so that `signum` and printing agree with the comparisons
+    } else if o > 0.0 {
         s
     } else {
         -s
@@ -146,9 +149,12 @@ pub fn in_diametral_ball_seg3(a: [f64; 3], b: [f64; 3], p: [f64; 3]) -> bool {
 /// diametral ball is empty.
 ///
 /// With `u = b - a`, `w = c - a`, `n = u × w`, `d = p - a`, the circumcentre is
-/// `a + m / (2|n|²)` with `m = |w|²(n × u) + |u|²(w × n)`, and `|p - o|² < R²` becomes the
-/// degree-6 polynomial test `d·m - |d|²|n|² > 0`. It is first evaluated in floats; if that is
-/// too close to zero to trust, it is redone in exact expansion arithmetic.
+/// `a + m / (2|n|²)` with `m = |w|²(n × u) + |u|²(w × n)`, so `|p - o|² < R²` is the degree-6
+/// test `d·m - |d|²|n|² > 0`. Rewritten with the six dot products of `u, w, d` (`uu = u·u`,
+/// `uw = u·w`, ...; Binet–Cauchy for the products of cross products) it becomes
+/// `E = uu·ww·(ud + wd - dd) - uw·(ww·ud + uu·wd) + dd·uw²`, which needs far fewer
+/// operations, so a cheaper filter and a much shorter exact stage. `E` is first evaluated in
+/// floats; if that is too close to zero to trust, it is redone in expansion arithmetic.
 pub fn in_diametral_ball_tri(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3]) -> bool {
     match diametral_tri_filter(a, b, c, p) {
         Some(s) => s > 0,
@@ -162,52 +168,36 @@ fn sub3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 }
 
 #[inline]
-fn cross3(u: [f64; 3], w: [f64; 3]) -> [f64; 3] {
-    [
-        u[1] * w[2] - u[2] * w[1],
-        u[2] * w[0] - u[0] * w[2],
-        u[0] * w[1] - u[1] * w[0],
-    ]
-}
-
-/// The cross product with every product's magnitude added: what bounds rounding errors.
-#[inline]
-fn cross3_abs(u: [f64; 3], w: [f64; 3]) -> [f64; 3] {
-    [
-        (u[1] * w[2]).abs() + (u[2] * w[1]).abs(),
-        (u[2] * w[0]).abs() + (u[0] * w[2]).abs(),
-        (u[0] * w[1]).abs() + (u[1] * w[0]).abs(),
-    ]
-}
-
-#[inline]
 fn dot3(u: [f64; 3], w: [f64; 3]) -> f64 {
     u[0] * w[0] + u[1] * w[1] + u[2] * w[2]
 }
 
-/// The float stage of [`in_diametral_ball_tri`]: the sign of `d·m - |d|²|n|²` when it is
-/// certain, `None` otherwise.
+/// The dot product of the absolute values: what bounds the rounding error of [`dot3`].
+#[inline]
+fn dot3_abs(u: [f64; 3], w: [f64; 3]) -> f64 {
+    (u[0] * w[0]).abs() + (u[1] * w[1]).abs() + (u[2] * w[2]).abs()
+}
+
+/// The float stage of [`in_diametral_ball_tri`]: the sign of `E` when it is certain, `None`
+/// otherwise.
 ///
 /// Error bound: expanding the float evaluation into monomials of the exact differences, each
-/// monomial carries at most 19 rounding factors `(1 + δ)`, `|δ| ≤ ε = 2⁻⁵³` (e.g. for
-/// `d_x |w|² n_y u_z`: 3 for the final sums, 2 for `d·m`'s product and `d_x`, 2 for `m_x`'s
-/// sum and product, 5 for `w_x²` inside `|w|²`, 3 for `n_y u_z` and its subtraction, 4 for
-/// `n_y`). So the error is at most `γ₁₉·M ≈ 19ε·M`, where `M` is the same expression with
-/// absolute values and every subtraction made an addition; `M` computed in floats is low by
-/// at most another factor `(1 - ε)¹⁹`. `32ε·M` (an exact power-of-two scaling) covers both.
+/// monomial carries at most 21 rounding factors `(1 + δ)`, `|δ| ≤ ε = 2⁻⁵³`. A dot product
+/// contributes 5 (two leaf differences, one product, two sums); the worst monomials, those of
+/// `uu·ww·ud`, have three dot products (15), the product `uu·ww` and the outer product (2),
+/// the two operations of `ud + wd - dd` (2) and the two final sums (2). So the error is at
+/// most `γ₂₁·M ≈ 21ε·M`, where `M` is `E` with absolute values and every subtraction made an
+/// addition; `M` computed in floats is low by at most another factor `(1 - ε)²¹`. `32ε·M`
+/// (an exact power-of-two scaling) covers both.
 fn diametral_tri_filter(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3]) -> Option<i32> {
     let (u, w, d) = (sub3(b, a), sub3(c, a), sub3(p, a));
-    let n = cross3(u, w);
-    let n_abs = cross3_abs(u, w);
     let (uu, ww, dd) = (dot3(u, u), dot3(w, w), dot3(d, d));
-    let (nxu, wxn) = (cross3(n, u), cross3(w, n));
-    let u_abs = u.map(f64::abs);
-    let w_abs = w.map(f64::abs);
-    let (nxu_abs, wxn_abs) = (cross3_abs(n_abs, u_abs), cross3_abs(w_abs, n_abs));
-    let m = [0, 1, 2].map(|k| ww * nxu[k] + uu * wxn[k]);
-    let m_abs = [0, 1, 2].map(|k| ww * nxu_abs[k] + uu * wxn_abs[k]);
-    let det = dot3(d, m) - dd * dot3(n, n);
-    let mag = dot3(d.map(f64::abs), m_abs) + dd * dot3(n_abs, n_abs);
+    let (uw, ud, wd) = (dot3(u, w), dot3(u, d), dot3(w, d));
+    let (uw_abs, ud_abs, wd_abs) = (dot3_abs(u, w), dot3_abs(u, d), dot3_abs(w, d));
+    let uuww = uu * ww;
+    let det = uuww * (ud + wd - dd) - uw * (ww * ud + uu * wd) + dd * uw * uw;
+    let mag =
+        uuww * (ud_abs + wd_abs + dd) + uw_abs * (ww * ud_abs + uu * wd_abs) + dd * uw_abs * uw_abs;
     // 32ε with ε = 2⁻⁵³ (f64::EPSILON is 2⁻⁵²).
     let bound = 16.0 * f64::EPSILON * mag;
     if det > bound {
@@ -219,20 +209,22 @@ fn diametral_tri_filter(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3]) -> O
     }
 }
 
-/// The exact sign of `d·m - |d|²|n|²` (see [`in_diametral_ball_tri`]) in expansion arithmetic.
+/// The exact sign of `E` (see [`in_diametral_ball_tri`]) in expansion arithmetic.
 fn diametral_tri_exact(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3]) -> i32 {
     use crate::exact::DynExpansion as X;
     let diff = |x: [f64; 3], y: [f64; 3]| [0, 1, 2].map(|k| X::from_diff(x[k], y[k]));
-    let cross = |u: &[X; 3], w: &[X; 3]| {
-        [(1, 2), (2, 0), (0, 1)].map(|(i, j)| u[i].mul(&w[j]).sub(&u[j].mul(&w[i])))
+    let dot = |u: &[X; 3], w: &[X; 3]| {
+        let mut s = u[0].mul(&w[0]).add(&u[1].mul(&w[1])).add(&u[2].mul(&w[2]));
+        s.compress();
+        s
     };
-    let dot = |u: &[X; 3], w: &[X; 3]| u[0].mul(&w[0]).add(&u[1].mul(&w[1])).add(&u[2].mul(&w[2]));
     let (u, w, d) = (diff(b, a), diff(c, a), diff(p, a));
-    let n = cross(&u, &w);
-    let (uu, ww, dd, nn) = (dot(&u, &u), dot(&w, &w), dot(&d, &d), dot(&n, &n));
-    let (nxu, wxn) = (cross(&n, &u), cross(&w, &n));
-    let m = [0, 1, 2].map(|k| ww.mul(&nxu[k]).add(&uu.mul(&wxn[k])));
-    dot(&d, &m).sub(&dd.mul(&nn)).sign()
+    let (uu, ww, dd) = (dot(&u, &u), dot(&w, &w), dot(&d, &d));
+    let (uw, ud, wd) = (dot(&u, &w), dot(&u, &d), dot(&w, &d));
+    let t1 = uu.mul(&ww).mul(&ud.add(&wd).sub(&dd));
+    let t2 = uw.mul(&ww.mul(&ud).add(&uu.mul(&wd)));
+    let t3 = dd.mul(&uw).mul(&uw);
+    t1.sub(&t2).add(&t3).sign()
 }
 
 #[cfg(test)]
@@ -629,7 +621,15 @@ mod tests {
         }
     }
 
-    /// The circumcentre and squared radius in plain floats.
+    fn cross3(u: [f64; 3], w: [f64; 3]) -> [f64; 3] {
+        [
+            u[1] * w[2] - u[2] * w[1],
+            u[2] * w[0] - u[0] * w[2],
+            u[0] * w[1] - u[1] * w[0],
+        ]
+    }
+
+    /// The circumcentre and squared radius in plain floats (the cross-product formula).
     fn float_circumsphere(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> ([f64; 3], f64) {
         let (u, w) = (sub3(b, a), sub3(c, a));
         let n = cross3(u, w);

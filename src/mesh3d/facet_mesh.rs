@@ -155,7 +155,12 @@ impl FacetMesh {
     /// The bounding triangle for a facet through `a, b, c` (not collinear) containing every
     /// point of `pts`: an equilateral triangle in the plane whose inscribed circle has four
     /// times the points' spread around their centroid.
-    pub fn bounding_triangle(a: [f64; 3], b: [f64; 3], c: [f64; 3], pts: &[[f64; 3]]) -> [[f64; 3]; 3] {
+    pub fn bounding_triangle(
+        a: [f64; 3],
+        b: [f64; 3],
+        c: [f64; 3],
+        pts: &[[f64; 3]],
+    ) -> [[f64; 3]; 3] {
         use glam::DVec3;
         let (a, b, c) = (DVec3::from(a), DVec3::from(b), DVec3::from(c));
         let u = (b - a).normalize();
@@ -329,12 +334,47 @@ impl FacetMesh {
         on_one_edge: &dyn Fn([u32; 3]) -> bool,
         split_of: Option<[u32; 2]>,
     ) -> Result<FacetChange, FacetInsertError> {
+        match self.insert_with(
+            pv,
+            pts,
+            provisional,
+            is_subseg,
+            on_one_edge,
+            split_of,
+            false,
+        ) {
+            // Rounded points next to rounding-flat triangles can leave no valid Delaunay
+            // cavity; then insert into the smallest cavity and restore Delaunay by flips.
+            Err(FacetInsertError::Lost) => {
+                self.insert_with(pv, pts, provisional, is_subseg, on_one_edge, split_of, true)
+            }
+            r => r,
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn insert_with(
+        &mut self,
+        pv: u32,
+        pts: &[[f64; 3]],
+        provisional: bool,
+        is_subseg: &dyn Fn(u32, u32) -> bool,
+        on_one_edge: &dyn Fn([u32; 3]) -> bool,
+        split_of: Option<[u32; 2]>,
+        minimal: bool,
+    ) -> Result<FacetChange, FacetInsertError> {
         let mut change = FacetChange::default();
         let p = pts[pv as usize];
+        let steiner = provisional || split_of.is_some();
         let split_edge = split_of.and_then(|[a, b]| self.find_half_edge(a, b));
         let start = match split_edge {
             Some(h) => h / 3,
-            None => self.locate(p, pts).ok_or(FacetInsertError::Lost)?,
+            None => self.locate(p, pts).ok_or_else(|| {
+                if std::env::var("IDM_DBG").is_ok() {
+                    eprintln!("lost: locate");
+                }
+                FacetInsertError::Lost
+            })?,
         };
         for &x in &self.tv[start as usize] {
             if !is_bound(x) && pts[x as usize] == p {
@@ -370,7 +410,14 @@ impl FacetMesh {
                     continue;
                 }
                 let n = h / 3;
-                if self.stamp[n as usize] != cur && self.conflict(n, p, pts) {
+                // Steiner points only reshape the inside of the facet (plus their seeds): the
+                // outside is scaffolding, and its huge, rounding-sensitive triangles would only
+                // make the cavity fragile.
+                if !minimal
+                    && self.stamp[n as usize] != cur
+                    && (!steiner || self.inside[n as usize])
+                    && self.conflict(n, p, pts)
+                {
                     self.stamp[n as usize] = cur;
                     self.cav.push(n);
                 }
@@ -390,11 +437,20 @@ impl FacetMesh {
                     if h != NONE && self.stamp[(h / 3) as usize] == cur {
                         continue;
                     }
-                    let o = orient2d(self.pp(v[next(i)], pts), self.pp(v[prev(i)], pts), self.proj(p));
+                    let o = orient2d(
+                        self.pp(v[next(i)], pts),
+                        self.pp(v[prev(i)], pts),
+                        self.proj(p),
+                    );
                     if o <= 0.0 {
                         if seeds.contains(&t) {
                             if h == NONE {
-                                return Err(FacetInsertError::Lost);
+                                {
+                                    if std::env::var("IDM_DBG").is_ok() {
+                                        eprintln!("lost: seed on bounding edge");
+                                    }
+                                    return Err(FacetInsertError::Lost);
+                                }
                             }
                             grow.push(h / 3);
                             continue;
@@ -474,7 +530,19 @@ impl FacetMesh {
             .collect();
         starts.sort_unstable();
         if starts.windows(2).any(|w| w[0] == w[1]) {
-            return Err(FacetInsertError::Lost);
+            {
+                if std::env::var("IDM_DBG").is_ok() {
+                    eprintln!(
+                        "lost: pinched boundary {} cav {:?} split {split_of:?} seeds {seeds:?}",
+                        pv,
+                        self.cav
+                            .iter()
+                            .map(|&t| self.tv[t as usize])
+                            .collect::<Vec<_>>()
+                    );
+                }
+                return Err(FacetInsertError::Lost);
+            }
         }
         change.encroached = crossed;
         for &t in &self.cav {
@@ -525,8 +593,93 @@ impl FacetMesh {
         }
         self.cav = cav;
         self.bnd = bnd;
+        if minimal {
+            let made_ids: Vec<u32> = made.iter().map(|m| m.2).collect();
+            self.flip_around(pv, pts, &made_ids, is_subseg, on_one_edge, &mut change);
+        }
         debug_assert!(self.check().is_ok(), "facet mesh: {:?}", self.check());
         Ok(change)
+    }
+
+    /// Lawson flips around the new vertex `pv` until its link is locally Delaunay (never
+    /// flipping a subsegment, and only convex quadrilaterals, so the mesh stays valid whatever
+    /// rounding does). `created` are the triangles just made; `change` is updated.
+    fn flip_around(
+        &mut self,
+        pv: u32,
+        pts: &[[f64; 3]],
+        created: &[u32],
+        is_subseg: &dyn Fn(u32, u32) -> bool,
+        on_one_edge: &dyn Fn([u32; 3]) -> bool,
+        change: &mut FacetChange,
+    ) {
+        let mut fresh: Vec<u32> = created.to_vec();
+        let mut stack: Vec<u32> = created.to_vec();
+        let p = pts[pv as usize];
+        let mut budget = 100_000;
+        while let Some(t) = stack.pop() {
+            budget -= 1;
+            if budget == 0 {
+                break;
+            }
+            if !self.alive[t as usize] {
+                continue;
+            }
+            let v = self.tv[t as usize];
+            let Some(k) = (0..3).find(|&k| v[k] == pv) else {
+                continue;
+            };
+            let (x, y) = (v[next(k)], v[prev(k)]);
+            let h = self.tn[t as usize][k];
+            if h == NONE || (!is_bound(x) && !is_bound(y) && is_subseg(x, y)) {
+                continue;
+            }
+            let (n, j) = (h / 3, (h % 3) as usize);
+            let q = self.tv[n as usize][j];
+            let (px, py, pq) = (self.pt(x, pts), self.pt(y, pts), self.pt(q, pts));
+            if incircle3d(p, px, py, pq) <= 0.0 {
+                continue;
+            }
+            let (p2, x2, y2, q2) = (self.proj(p), self.proj(px), self.proj(py), self.proj(pq));
+            if orient2d(p2, x2, q2) <= 0.0 || orient2d(p2, q2, y2) <= 0.0 {
+                continue;
+            }
+            let a_ = self.tn[t as usize][next(k)];
+            let b_ = self.tn[t as usize][prev(k)];
+            let c_ = self.tn[n as usize][next(j)];
+            let d_ = self.tn[n as usize][prev(j)];
+            for tt in [t, n] {
+                if self.inside[tt as usize] && !fresh.contains(&tt) {
+                    change.removed.push(self.tv[tt as usize]);
+                }
+            }
+            self.tv[t as usize] = [pv, x, q];
+            self.tv[n as usize] = [pv, q, y];
+            self.link(3 * t, c_);
+            self.link(3 * t + 2, b_);
+            self.link(3 * n, d_);
+            self.link(3 * n + 1, a_);
+            self.link(3 * t + 1, 3 * n + 2);
+            for tt in [t, n] {
+                let vv = self.tv[tt as usize];
+                self.inside[tt as usize] = !on_one_edge(vv) && self.classify(vv, pts);
+                for &u in &vv {
+                    if !is_bound(u) {
+                        self.vtri.insert(u, tt);
+                    }
+                }
+                if !fresh.contains(&tt) {
+                    fresh.push(tt);
+                }
+                stack.push(tt);
+            }
+        }
+        change.added.retain(|_| false);
+        for &t in &fresh {
+            if self.alive[t as usize] && self.inside[t as usize] {
+                change.added.push(self.tv[t as usize]);
+            }
+        }
     }
 
     /// Structural check (adjacency symmetric and consistent).
@@ -636,7 +789,9 @@ mod tests {
         let mut pts = Vec::new();
         let mut s = 12345u64;
         for _ in 0..60 {
-            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             let x = ((s >> 33) % 40) as f64;
             let y = ((s >> 45) % 40) as f64;
             let p = [x, y, x + 2.0 * y];
@@ -650,7 +805,10 @@ mod tests {
             let [a, b, c] = t.map(|v| pts[v as usize]);
             for (i, &q) in pts.iter().enumerate() {
                 if !t.contains(&(i as u32)) {
-                    assert!(incircle3d(a, b, c, q) <= 0.0, "triangle {t:?} has point {i} inside");
+                    assert!(
+                        incircle3d(a, b, c, q) <= 0.0,
+                        "triangle {t:?} has point {i} inside"
+                    );
                 }
             }
         }

@@ -98,26 +98,12 @@ impl Features {
     /// Collects input edges (free segments and facet loop edges, each once) and facets.
     pub fn new(plc: &Plc) -> Result<Features, String> {
         let n = plc.points.len();
-        let mut edges: Vec<InputEdge> = Vec::new();
-        let mut subsegs: HashMap<u64, u32> = HashMap::new();
+        // Raw input edges (endpoints, marker, facet); split at input vertices lying on them
+        // further below.
+        let mut raw: Vec<(u32, u32, i32, Option<u32>)> = Vec::new();
         let mut add_edge = |a: u32, b: u32, marker: i32, facet: Option<u32>| {
-            if a == b {
-                return;
-            }
-            let k = ekey(a, b);
-            let id = *subsegs.entry(k).or_insert_with(|| {
-                edges.push(InputEdge {
-                    ends: [a, b],
-                    marker,
-                    facets: Vec::new(),
-                });
-                (edges.len() - 1) as u32
-            });
-            if let Some(f) = facet {
-                let e = &mut edges[id as usize];
-                if !e.facets.contains(&f) {
-                    e.facets.push(f);
-                }
+            if a != b {
+                raw.push((a, b, marker, facet));
             }
         };
         for (i, s) in plc.segments.iter().enumerate() {
@@ -148,7 +134,9 @@ impl Features {
                 }
             }
             let Some(axis) = axis else {
-                return Err(format!("facet {fi} is degenerate (its vertices are collinear)"));
+                return Err(format!(
+                    "facet {fi} is degenerate (its vertices are collinear)"
+                ));
             };
             let mut loops = Vec::new();
             for poly in &f.polygons {
@@ -169,9 +157,6 @@ impl Features {
                 }
             }
             let convex = loops.len() == 1 && is_convex(&loops[0]);
-            for &v in &verts {
-                vert_facets.entry(v).or_default().push(fid);
-            }
             facets.push(FacetInfo {
                 marker: f.marker,
                 axis,
@@ -179,6 +164,45 @@ impl Features {
                 vertices: verts,
                 plane,
             });
+        }
+        // An input vertex exactly on an input edge (a T-junction of the surface) splits it:
+        // the pieces are the input edges, each with the union of the facets around it.
+        let on_edges = vertices_on_edges(&plc.points, &raw);
+        let mut edges: Vec<InputEdge> = Vec::new();
+        let mut subsegs: HashMap<u64, u32> = HashMap::new();
+        for (r, &(a, b, marker, facet)) in raw.iter().enumerate() {
+            let mut chain = vec![a];
+            chain.extend(on_edges[r].iter().copied());
+            chain.push(b);
+            if let Some(f) = facet {
+                for &v in &on_edges[r] {
+                    let fv = &mut facets[f as usize].vertices;
+                    if !fv.contains(&v) {
+                        fv.push(v);
+                    }
+                }
+            }
+            for w in chain.windows(2) {
+                let id = *subsegs.entry(ekey(w[0], w[1])).or_insert_with(|| {
+                    edges.push(InputEdge {
+                        ends: [w[0], w[1]],
+                        marker,
+                        facets: Vec::new(),
+                    });
+                    (edges.len() - 1) as u32
+                });
+                if let Some(f) = facet {
+                    let e = &mut edges[id as usize];
+                    if !e.facets.contains(&f) {
+                        e.facets.push(f);
+                    }
+                }
+            }
+        }
+        for (fid, f) in facets.iter().enumerate() {
+            for &v in &f.vertices {
+                vert_facets.entry(v).or_default().push(fid as u32);
+            }
         }
         let mut on_feature = vec![false; n];
         let mut seg_adj: HashMap<u32, Vec<u32>> = HashMap::new();
@@ -277,4 +301,41 @@ fn is_convex(lp: &[[f64; 2]]) -> bool {
         neg |= o < 0.0;
     }
     !(pos && neg)
+}
+
+/// For each raw edge, the input vertices strictly inside it (exactly collinear), sorted from its
+/// first endpoint. Candidates come from a sort on x, so this is fast unless edges are long and
+/// the points dense.
+fn vertices_on_edges(points: &[[f64; 3]], raw: &[(u32, u32, i32, Option<u32>)]) -> Vec<Vec<u32>> {
+    let mut by_x: Vec<u32> = (0..points.len() as u32).collect();
+    by_x.sort_by(|&i, &j| points[i as usize][0].total_cmp(&points[j as usize][0]));
+    let xs: Vec<f64> = by_x.iter().map(|&i| points[i as usize][0]).collect();
+    raw.iter()
+        .map(|&(a, b, _, _)| {
+            let (pa, pb) = (points[a as usize], points[b as usize]);
+            let lo = [0, 1, 2].map(|k| pa[k].min(pb[k]));
+            let hi = [0, 1, 2].map(|k| pa[k].max(pb[k]));
+            let start = xs.partition_point(|&x| x < lo[0]);
+            let end = xs.partition_point(|&x| x <= hi[0]);
+            let mut on: Vec<u32> = by_x[start..end]
+                .iter()
+                .copied()
+                .filter(|&v| {
+                    if v == a || v == b {
+                        return false;
+                    }
+                    let p = points[v as usize];
+                    (0..3).all(|k| lo[k] <= p[k] && p[k] <= hi[k])
+                        && (0..3).all(|ax| orient2d(proj(pa, ax), proj(pb, ax), proj(p, ax)) == 0.0)
+                        && p != pa
+                        && p != pb
+                })
+                .collect();
+            on.sort_by(|&u, &v| {
+                crate::geometry::dist2_3(pa, points[u as usize])
+                    .total_cmp(&crate::geometry::dist2_3(pa, points[v as usize]))
+            });
+            on
+        })
+        .collect()
 }

@@ -67,7 +67,11 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
         .map(|f| {
             let vp: Vec<[f64; 3]> = f.vertices.iter().map(|&v| plc.points[v as usize]).collect();
             let [a, b, c] = f.plane.map(|v| plc.points[v as usize]);
-            FacetMesh::new(f.axis, f.outline.clone(), FacetMesh::bounding_triangle(a, b, c, &vp))
+            FacetMesh::new(
+                f.axis,
+                f.outline.clone(),
+                FacetMesh::bounding_triangle(a, b, c, &vp),
+            )
         })
         .collect();
     let mut m = Mesher {
@@ -93,8 +97,7 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
     let mut keys: Vec<u64> = m.feat.subsegs.keys().copied().collect();
     keys.sort_unstable();
     for k in keys {
-        m.seg_q
-            .push_back(([(k >> 32) as u32, k as u32], false));
+        m.seg_q.push_back(([(k >> 32) as u32, k as u32], false));
     }
     m.run()?;
     m.classify(plc)?;
@@ -187,7 +190,8 @@ impl Mesher<'_> {
         let feat = &self.feat;
         let is_sub = |a: u32, b: u32| feat.subseg(a, b).is_some();
         let flat = |t: [u32; 3]| feat.on_one_edge(t);
-        let ch = self.fmesh[f as usize].insert(v, &self.pts, provisional, &is_sub, &flat, split_of)?;
+        let ch =
+            self.fmesh[f as usize].insert(v, &self.pts, provisional, &is_sub, &flat, split_of)?;
         for t in ch.removed {
             self.feat.subfaces.remove(&fkey(t));
         }
@@ -280,10 +284,7 @@ impl Mesher<'_> {
                 let vs = self.tets.verts(t);
                 let k = (0..4).find(|&k| vs[k] == v).unwrap_or(0);
                 let key = fkey(face_of(vs, k));
-                let reg = match self
-                    .face_region
-                    .binary_search_by(|e| e.0.cmp(&key))
-                {
+                let reg = match self.face_region.binary_search_by(|e| e.0.cmp(&key)) {
                     Ok(i) => self.face_region[i].1,
                     Err(_) => OUTSIDE,
                 };
@@ -365,7 +366,10 @@ impl Mesher<'_> {
                 continue;
             }
             for x in vs {
-                if x != a && x != b && x != GHOST && in_diametral_ball_seg3(pa, pb, self.pts[x as usize])
+                if x != a
+                    && x != b
+                    && x != GHOST
+                    && in_diametral_ball_seg3(pa, pb, self.pts[x as usize])
                 {
                     return true;
                 }
@@ -382,8 +386,8 @@ impl Mesher<'_> {
         if !force && !self.subseg_needs_split(a, b, e) {
             return Ok(());
         }
+        let mid = self.split_point(a, b);
         let (pa, pb) = (self.pts[a as usize], self.pts[b as usize]);
-        let mid = [0, 1, 2].map(|k| 0.5 * (pa[k] + pb[k]));
         if mid == pa || mid == pb {
             return Err(Error::Internal(format!(
                 "subsegment {a}-{b} is too short to split (precision exhausted)"
@@ -397,10 +401,40 @@ impl Mesher<'_> {
         let facets = self.feat.edges[e as usize].facets.clone();
         for f in facets {
             self.facet_insert(f, m, false, Some([a, b]))
-                .map_err(|err| Error::Internal(format!("segment split point in facet {f}: {err:?}")))?;
+                .map_err(|err| {
+                    let info = match err {
+                        FacetInsertError::Duplicate(d) => format!(
+                        " (split of {a}-{b} at {mid:?}; vertex {d} made by {:?}, on facets {:?})",
+                        self.feat.split_edge.get(&d).map(|e| self.feat.edges[*e as usize].ends),
+                        self.feat.vert_facets.get(&d)
+                    ),
+                        _ => String::new(),
+                    };
+                    Error::Internal(format!("segment split point in facet {f}: {err:?}{info}"))
+                })?;
         }
         self.insert3d(m, false)
             .map_err(|_| Error::Internal(format!("segment split point {m} refused")))
+    }
+
+    /// Where to split subsegment `ab`: the midpoint, or, when exactly one end is an input vertex
+    /// where input edges meet (an apex), the point at the power-of-two distance from it nearest
+    /// to half the length (Ruppert's concentric shells): split points of edges meeting at a
+    /// small angle then sit at equal distances from the apex and stop encroaching each other.
+    fn split_point(&self, a: u32, b: u32) -> [f64; 3] {
+        let apex = |v: u32| {
+            (v as usize) < self.num_input && self.feat.seg_adj.get(&v).is_some_and(|l| l.len() >= 2)
+        };
+        let (pa, pb) = (self.pts[a as usize], self.pts[b as usize]);
+        let (from, to) = match (apex(a), apex(b)) {
+            (true, false) => (pa, pb),
+            (false, true) => (pb, pa),
+            _ => return [0, 1, 2].map(|k| 0.5 * (pa[k] + pb[k])),
+        };
+        let len = crate::geometry::dist2_3(from, to).sqrt();
+        let d = (0.5 * len).log2().round().exp2();
+        let t = (d / len).clamp(0.25, 0.75);
+        [0, 1, 2].map(|k| from[k] + (to[k] - from[k]) * t)
     }
 
     /// Whether subface `abc` is missing from the 3D mesh or encroached.
@@ -540,9 +574,9 @@ impl Mesher<'_> {
             .collect();
         self.flood(&ghosts, OUTSIDE, &mut seen, &mut stack);
         for (i, h) in plc.holes.iter().enumerate() {
-            let t = self.seed_tet(*h).ok_or_else(|| {
-                Error::Input(crate::InputError::HoleOutsideDomain { hole: i })
-            })?;
+            let t = self
+                .seed_tet(*h)
+                .ok_or_else(|| Error::Input(crate::InputError::HoleOutsideDomain { hole: i }))?;
             self.flood(&[t], OUTSIDE, &mut seen, &mut stack);
         }
         for (i, r) in plc.regions.iter().enumerate() {
@@ -551,7 +585,9 @@ impl Mesher<'_> {
                     self.flood(&[t], i as u32 + 1, &mut seen, &mut stack);
                 }
             } else {
-                return Err(Error::Input(crate::InputError::RegionOutsideDomain { region: i }));
+                return Err(Error::Input(crate::InputError::RegionOutsideDomain {
+                    region: i,
+                }));
             }
         }
         self.classified = true;

@@ -49,6 +49,9 @@ struct Mesher<'a> {
     num_input: usize,
     steiner: u64,
     complete: bool,
+    /// Small input angles (see [`Sharp`]): tets touching them are exempt from the
+    /// radius-edge bound, so refinement cannot chase them forever.
+    sharp: Sharp,
     /// Scratch: (sorted boundary face, region of the cavity tet behind it).
     face_region: Vec<([u32; 3], u32)>,
 }
@@ -90,8 +93,10 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
         num_input: n,
         steiner: 0,
         complete: true,
+        sharp: Sharp::default(),
         face_region: Vec::new(),
     };
+    m.sharp = Sharp::find(plc, &m.feat);
     m.insert_input_points()?;
     // Every subsegment and subface starts on the queue; taking one checks it.
     let mut keys: Vec<u64> = m.feat.subsegs.keys().copied().collect();
@@ -493,7 +498,7 @@ impl Mesher<'_> {
         let vs = self.tets.verts(t);
         let c = vs.map(|x| self.pts[x as usize]);
         if let Some(rho) = self.opts.radius_edge {
-            if tet_radius_edge(c) > rho {
+            if tet_radius_edge(c) > rho && !self.sharp.exempts(vs, &self.feat) {
                 return true;
             }
         }
@@ -747,4 +752,117 @@ fn face_of(v: [u32; 4], f: usize) -> [u32; 3] {
 
 fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
     super::features::dominant_axis(a, b, c).is_none()
+}
+
+/// Input angles below 60°: between two input edges at a vertex, and between two facets along
+/// an edge (dihedral). Radius-edge refinement next to them would never end (each split makes a
+/// smaller bad tet between the two features), so tets touching them are exempt from the bound,
+/// as Triangle and the paper (§6) do for small 2D angles.
+#[derive(Default)]
+struct Sharp {
+    /// Input vertices where two input edges meet below 60°.
+    vertices: std::collections::HashSet<u32>,
+    /// Input edges along which two facets meet below 60°.
+    edges: std::collections::HashSet<u32>,
+    /// Facet pairs (smaller id first) meeting below 60° along an edge or at a vertex.
+    facet_pairs: std::collections::HashSet<(u32, u32)>,
+}
+
+impl Sharp {
+    fn find(plc: &Plc, feat: &Features) -> Sharp {
+        use glam::DVec3;
+        let p = |v: u32| DVec3::from(plc.points[v as usize]);
+        let small = 60f64.to_radians().cos();
+        let mut sharp = Sharp::default();
+        for (&v, nbrs) in &feat.seg_adj {
+            if (v as usize) >= plc.points.len() {
+                continue;
+            }
+            let facets_of = |w: u32| {
+                feat.subsegs
+                    .get(&super::features::ekey(v, w))
+                    .map(|&e| feat.edges[e as usize].facets.clone())
+                    .unwrap_or_default()
+            };
+            for (i, &a) in nbrs.iter().enumerate() {
+                for &b in &nbrs[i + 1..] {
+                    let (da, db) = ((p(a) - p(v)).normalize(), (p(b) - p(v)).normalize());
+                    let cos = da.dot(db);
+                    // Two edges of one facet meeting at a moderate angle are the facet mesh's
+                    // business; below 30° (a spike's tip) they are sharp anyway.
+                    let share = facets_of(a).iter().any(|f| facets_of(b).contains(f));
+                    if (cos > small && !share) || cos > 30f64.to_radians().cos() {
+                        sharp.vertices.insert(v);
+                    }
+                }
+            }
+        }
+        // The direction into facet f from edge ab: towards the facet vertex farthest from the
+        // edge's line (right for convex facets; a conservative guess otherwise).
+        let inward = |f: u32, a: u32, b: u32| -> Option<DVec3> {
+            let (pa, pb) = (p(a), p(b));
+            let e = (pb - pa).normalize();
+            feat.facets[f as usize]
+                .vertices
+                .iter()
+                .map(|&c| {
+                    let d = p(c) - pa;
+                    d - e * d.dot(e)
+                })
+                .max_by(|x, y| x.length_squared().total_cmp(&y.length_squared()))
+                .filter(|d| d.length_squared() > 0.0)
+                .map(|d| d.normalize())
+        };
+        for (ei, e) in feat.edges.iter().enumerate() {
+            let [a, b] = e.ends;
+            for (i, &f1) in e.facets.iter().enumerate() {
+                for &f2 in &e.facets[i + 1..] {
+                    if let (Some(d1), Some(d2)) = (inward(f1, a, b), inward(f2, a, b)) {
+                        if d1.dot(d2) > small {
+                            sharp.edges.insert(ei as u32);
+                            sharp.facet_pairs.insert((f1.min(f2), f1.max(f2)));
+                        }
+                    }
+                }
+            }
+        }
+        sharp
+    }
+
+    /// Whether a tet with these vertices touches a small input angle.
+    fn exempts(&self, vs: [u32; 4], feat: &Features) -> bool {
+        if self.vertices.is_empty() && self.edges.is_empty() {
+            return false;
+        }
+        for &v in &vs {
+            if self.vertices.contains(&v) {
+                return true;
+            }
+            if let Some(e) = feat.split_edge.get(&v) {
+                if self.edges.contains(e) {
+                    return true;
+                }
+            }
+        }
+        if self.facet_pairs.is_empty() {
+            return false;
+        }
+        let none = Vec::new();
+        let fs: Vec<&Vec<u32>> = vs
+            .iter()
+            .map(|v| feat.vert_facets.get(v).unwrap_or(&none))
+            .collect();
+        for i in 0..4 {
+            for j in i + 1..4 {
+                for &f1 in fs[i] {
+                    for &f2 in fs[j] {
+                        if f1 != f2 && self.facet_pairs.contains(&(f1.min(f2), f1.max(f2))) {
+                            return true;
+                        }
+                    }
+                }
+            }
+        }
+        false
+    }
 }

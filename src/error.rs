@@ -43,6 +43,54 @@ pub enum InputError {
     },
     /// A coordinate is so large that circumcenters would overflow.
     CoordinateTooLarge { point: usize },
+    /// Fewer than four points were given to a 3D mesher.
+    TooFewPoints3 { count: usize },
+    /// All points lie in one plane, so there is no tetrahedron to make.
+    AllCoplanar,
+    /// A facet has no polygon.
+    FacetWithoutPolygons { facet: usize },
+    /// A facet polygon has no vertex.
+    EmptyPolygon { facet: usize, polygon: usize },
+    /// A facet polygon refers to a point index that does not exist.
+    FacetIndexOutOfRange {
+        facet: usize,
+        polygon: usize,
+        index: u64,
+        num_points: usize,
+    },
+    /// A facet polygon lists the same point twice.
+    RepeatedVertexInPolygon {
+        facet: usize,
+        polygon: usize,
+        vertex: usize,
+    },
+    /// A facet loop (three or more vertices) has all its vertices on one line.
+    DegeneratePolygon { facet: usize, polygon: usize },
+    /// All vertices of a facet lie on one line, so it spans no plane.
+    DegenerateFacet { facet: usize },
+    /// A facet vertex lies off the plane of the facet's first three non-collinear vertices.
+    NonPlanarFacet { facet: usize, vertex: usize },
+    /// A facet hole seed has a NaN or infinite coordinate.
+    NonFiniteFacetHole { facet: usize, hole: usize },
+    /// A facet hole seed does not lie in the facet's plane.
+    FacetHoleOffPlane { facet: usize, hole: usize },
+    /// Two edges of one facet's polygons cross (the polygons may be the same one).
+    SelfIntersectingFacet {
+        facet: usize,
+        first_polygon: usize,
+        second_polygon: usize,
+    },
+    /// A 3D region seed has a NaN or infinite coordinate or attribute, or a maximum volume that
+    /// is not positive.
+    InvalidRegion3 { region: usize },
+    /// A segment meets a facet other than at a vertex of both (or along an edge of the facet).
+    SegmentCrossesFacet { segment: usize, facet: usize },
+    /// Two facets meet other than along shared edges and vertices.
+    FacetsIntersect { first: usize, second: usize },
+    /// A point lies on a facet (inside it or on its boundary) but is not one of its vertices.
+    VertexOnFacet { vertex: usize, facet: usize },
+    /// A point lies in the interior of a segment.
+    VertexOnSegment { vertex: usize, segment: usize },
 }
 
 /// Any failure of a meshing call.
@@ -111,6 +159,86 @@ impl fmt::Display for InputError {
                     f,
                     "point {point} has a coordinate too large to mesh safely (|x| > 1e150)"
                 )
+            }
+            TooFewPoints3 { count } => write!(f, "need at least 4 points, got {count}"),
+            AllCoplanar => write!(f, "all points lie in one plane"),
+            FacetWithoutPolygons { facet } => write!(f, "facet {facet} has no polygon"),
+            EmptyPolygon { facet, polygon } => {
+                write!(f, "facet {facet} polygon {polygon} has no vertex")
+            }
+            FacetIndexOutOfRange {
+                facet,
+                polygon,
+                index,
+                num_points,
+            } => write!(
+                f,
+                "facet {facet} polygon {polygon} refers to point {index}, but there are only \
+                 {num_points} points"
+            ),
+            RepeatedVertexInPolygon {
+                facet,
+                polygon,
+                vertex,
+            } => write!(
+                f,
+                "facet {facet} polygon {polygon} lists point {vertex} twice"
+            ),
+            DegeneratePolygon { facet, polygon } => write!(
+                f,
+                "facet {facet} polygon {polygon} has all its vertices on one line"
+            ),
+            DegenerateFacet { facet } => {
+                write!(f, "facet {facet} has all its vertices on one line")
+            }
+            NonPlanarFacet { facet, vertex } => write!(
+                f,
+                "facet {facet} is not planar: point {vertex} is off the plane of its first \
+                 three non-collinear vertices"
+            ),
+            NonFiniteFacetHole { facet, hole } => {
+                write!(
+                    f,
+                    "facet {facet} hole {hole} has a NaN or infinite coordinate"
+                )
+            }
+            FacetHoleOffPlane { facet, hole } => {
+                write!(f, "facet {facet} hole {hole} is not in the facet's plane")
+            }
+            SelfIntersectingFacet {
+                facet,
+                first_polygon,
+                second_polygon,
+            } => {
+                if first_polygon == second_polygon {
+                    write!(f, "facet {facet} polygon {first_polygon} crosses itself")
+                } else {
+                    write!(
+                        f,
+                        "facet {facet}: polygons {first_polygon} and {second_polygon} cross"
+                    )
+                }
+            }
+            InvalidRegion3 { region } => write!(
+                f,
+                "region {region} has a NaN or infinite coordinate or attribute, or a maximum \
+                 volume that is not positive"
+            ),
+            SegmentCrossesFacet { segment, facet } => write!(
+                f,
+                "segment {segment} meets facet {facet} other than at a shared vertex or edge"
+            ),
+            FacetsIntersect { first, second } => write!(
+                f,
+                "facets {first} and {second} intersect other than along shared edges and \
+                 vertices"
+            ),
+            VertexOnFacet { vertex, facet } => write!(
+                f,
+                "point {vertex} lies on facet {facet} but is not one of its vertices"
+            ),
+            VertexOnSegment { vertex, segment } => {
+                write!(f, "point {vertex} lies inside segment {segment}")
             }
         }
     }

@@ -1,5 +1,5 @@
 //! The `idmesh` command line: `idmesh triangle [SWITCHES] FILE` (Triangle-compatible 2D
-//! meshing) and, later, `idmesh tetgen` (3D).
+//! meshing) and `idmesh tetgen [SWITCHES] FILE` (TetGen-compatible 3D meshing).
 //!
 //! Exit status 0 on success; 1 with a single line `idmesh: <message>` on standard error on any
 //! error, including an internal one (a panic is caught and reported the same way).
@@ -9,6 +9,10 @@
 mod names;
 #[path = "idmesh/switches.rs"]
 mod switches;
+#[path = "idmesh/tetgen_cmd.rs"]
+mod tetgen_cmd;
+#[path = "idmesh/tetgen_switches.rs"]
+mod tetgen_switches;
 #[path = "idmesh/triangle_cmd.rs"]
 mod triangle_cmd;
 
@@ -20,12 +24,14 @@ idmesh: quality Delaunay meshing (drop-in alternative to Triangle and TetGen).
 
 Usage:
   idmesh triangle [-SWITCHES] FILE   2D meshing with Triangle's switches and file formats
-  idmesh tetgen ...                  3D meshing (not implemented yet)
+  idmesh tetgen [-SWITCHES] FILE     3D meshing with TetGen's switches and file formats
   idmesh triangle --help             the 2D switches
+  idmesh tetgen --help               the 3D switches
   idmesh --version
 
-Example:
+Examples:
   idmesh triangle -pq30a0.01V examples/data/square_hole.poly
+  idmesh tetgen -pq1.414a0.01V examples/data/3d_box_hole.poly
 ";
 
 fn main() -> ExitCode {
@@ -66,7 +72,7 @@ fn run(args: &[OsString]) -> Result<(), String> {
             Ok(())
         }
         Some("triangle") => triangle_cmd::main(&args[1..]),
-        Some("tetgen") => Err("tetgen: 3D meshing is not implemented yet".into()),
+        Some("tetgen") => tetgen_cmd::main(&args[1..]),
         Some(other) => Err(format!("unknown command '{other}'; try 'idmesh --help'")),
     }
 }

@@ -170,6 +170,19 @@ impl<'a> Record<'a> {
     }
 }
 
+/// Reads a whole file as text; invalid UTF-8 (say, Latin-1 in a comment) is replaced, not
+/// rejected, because only ASCII matters to the formats. Errors name the file.
+pub(crate) fn read_text(path: &std::path::Path) -> Result<String, ParseError> {
+    match std::fs::read(path) {
+        Ok(bytes) => Ok(String::from_utf8_lossy(&bytes).into_owned()),
+        Err(e) => Err(ParseError::new(
+            &path.display().to_string(),
+            0,
+            format!("cannot read: {e}"),
+        )),
+    }
+}
+
 /// Parses a float as `strtod` would for well-formed input (Rust's parser rounds correctly).
 pub(crate) fn parse_f64(s: &str) -> Option<f64> {
     s.parse::<f64>().ok()

@@ -2,16 +2,21 @@
 //!
 //! * [`triangle`]: Shewchuk's Triangle formats (.node, .poly in; .node, .ele, .poly, .edge,
 //!   .neigh out).
+//! * [`tetgen`]: Hang Si's TetGen formats (.node, .poly, .smesh, and the surface formats .off,
+//!   .stl, .ply, .mesh in; .node, .ele, .face, .edge, .neigh out).
 //!
 //! Readers never panic: every problem is a [`ParseError`] naming the file and line. Writers
 //! buffer internally and write floats so that they read back bit for bit.
 //!
-//! The line tokenizer and number formatting are shared so that TetGen's formats can be
-//! added beside Triangle's later.
+//! The line tokenizer and number formatting are shared by both families of formats.
 
 mod error;
 mod lines;
 mod numfmt;
+mod surface_read;
+pub mod tetgen;
+mod tetgen_read;
+mod tetgen_write;
 pub mod triangle;
 mod triangle_read;
 mod triangle_write;

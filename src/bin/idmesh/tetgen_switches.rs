@@ -1,0 +1,373 @@
+//! TetGen-style command line parsing for `idmesh tetgen`.
+//!
+//! Switches are letters concatenated in one or more arguments starting with `-`
+//! (`-pq1.414a0.1V` or `-p -q1.414 -a0.1 -V`), in any order relative to the file name. Numbers
+//! are read exactly as TetGen reads them: after `q` (and its `/` part) the longest run of
+//! digits and dots; after `a` and `S` the longest run of digits, dots, `e`, `-` and `+`, so
+//! `-a1e-5` is 1e-5 but `-a0.1e` swallows the `e`. The run is converted like `strtod` (`strtol`
+//! for `S`): its longest prefix that is a number. Every letter TetGen accepts but idmesh does
+//! not implement is an error naming it, never silently ignored.
+
+/// The parsed switches. Field comments give the letter.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TetSwitches {
+    /// `p`: read a PLC (also implied by a PLC file name and by `q`, `a<volume>` and `d`).
+    pub plc: bool,
+    /// `q[ratio]`: the radius-edge bound (`q` alone, or implied by `a<volume>`: 2.0).
+    pub radius_edge: Option<f64>,
+    /// `a<volume>`: global maximum tetrahedron volume.
+    pub max_volume: Option<f64>,
+    /// `a` without a number: apply the regional volume bounds of the input.
+    pub region_volume: bool,
+    /// `A`: write each tetrahedron's regional attribute to the `.ele` file.
+    pub region_attributes: bool,
+    /// `S<n>`: at most `n` Steiner points (`S` alone: no limit, as in TetGen).
+    pub max_steiner: Option<u64>,
+    /// `z`: number output items from 0.
+    pub zero_based: bool,
+    /// `f`: write every face, not only the boundary ones, to the `.face` file.
+    pub all_faces: bool,
+    /// `e`: write the subsegments to an `.edge` file.
+    pub edges: bool,
+    /// `n`: write a `.neigh` file.
+    pub neighbors: bool,
+    /// `N`, `E`, `F`: do not write the `.node` / `.ele` / `.face` file.
+    pub no_node: bool,
+    /// See `no_node`.
+    pub no_ele: bool,
+    /// See `no_node`.
+    pub no_face: bool,
+    /// `B`: leave boundary markers out of the output.
+    pub no_markers: bool,
+    /// `I`: no iteration number in output names (`FILE.node`, not `FILE.1.node`).
+    pub no_iteration: bool,
+    /// `d`: only check the PLC for self-intersections; write nothing.
+    pub detect: bool,
+    /// `C`: check the final mesh's consistency.
+    pub check: bool,
+    /// `Q`: print nothing but errors and warnings.
+    pub quiet: bool,
+    /// `V`: print statistics.
+    pub verbose: bool,
+}
+
+/// What the command line asks for.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Parsed {
+    /// Print the help text.
+    Help,
+    /// Mesh `file` with `switches`.
+    Run {
+        /// The switches.
+        switches: TetSwitches,
+        /// The input file as given (with or without extension).
+        file: String,
+    },
+}
+
+/// TetGen switches that idmesh recognises but does not implement, with what they do.
+fn unsupported(c: char) -> Option<&'static str> {
+    Some(match c {
+        'Y' => "no Steiner points on the boundary; not supported yet",
+        'c' => "retaining the convex hull of the PLC",
+        'r' => "refining a previous mesh",
+        'i' => "inserting additional points",
+        'm' => "a mesh sizing function (use the library's SizingFn3)",
+        'T' => "a coplanarity tolerance (idmesh decides coplanarity exactly)",
+        'X' => "disabling exact arithmetic",
+        'w' => "weighted Delaunay triangulations",
+        'R' => "reversing tetrahedron orientation",
+        'O' => "mesh optimization levels",
+        'o' => "second-order tetrahedra",
+        's' => "piecewise smooth complexes",
+        'l' | 'L' | 'b' => "choosing the insertion algorithm",
+        'v' => "Voronoi diagram output",
+        'g' | 'G' | 'K' | 'k' => "Medit, Gid and VTK output",
+        'j' => "jettisoning unused vertices",
+        _ => return None,
+    })
+}
+
+/// The run of characters starting at `chars[*j + 1]` that `accept`s, when its first
+/// character is a digit or a dot (TetGen's test); advances `*j` past it.
+fn run_after(chars: &[char], j: &mut usize, accept: impl Fn(char) -> bool) -> Option<String> {
+    let start = *j + 1;
+    if !chars
+        .get(start)
+        .is_some_and(|c| c.is_ascii_digit() || *c == '.')
+    {
+        return None;
+    }
+    let mut end = start;
+    while end < chars.len() && accept(chars[end]) {
+        end += 1;
+    }
+    *j = end - 1;
+    Some(chars[start..end].iter().collect())
+}
+
+/// `strtod` on a run: its longest prefix that is a number (none: 0).
+fn strtod(run: &str) -> f64 {
+    (1..=run.len())
+        .rev()
+        .find_map(|k| run[..k].parse::<f64>().ok())
+        .unwrap_or(0.0)
+}
+
+fn plain_number(c: char) -> bool {
+    c.is_ascii_digit() || c == '.'
+}
+
+fn exp_number(c: char) -> bool {
+    c.is_ascii_digit() || ".e-+".contains(c)
+}
+
+/// Applies one switch group such as `-pq1.414a0.1V`.
+fn parse_group(arg: &str, sw: &mut TetSwitches) -> Result<(), String> {
+    let chars: Vec<char> = arg.chars().skip(1).collect();
+    if chars.is_empty() {
+        return Err("empty switch '-'".into());
+    }
+    let mut j = 0;
+    while j < chars.len() {
+        match chars[j] {
+            'p' => {
+                sw.plc = true;
+                if run_after(&chars, &mut j, plain_number).is_some() {
+                    return Err(format!(
+                        "-p with a number (a facet angle tolerance) is not supported (in '{arg}')"
+                    ));
+                }
+            }
+            'q' => {
+                let ratio = run_after(&chars, &mut j, plain_number).map(|r| strtod(&r));
+                sw.radius_edge = Some(ratio.unwrap_or(2.0));
+                for part in ["minimum dihedral angle", "maximum dihedral angle"] {
+                    if chars.get(j + 1).is_some_and(|c| *c == '/' || *c == ',') {
+                        j += 1;
+                        let angle = run_after(&chars, &mut j, plain_number).map(|r| strtod(&r));
+                        if angle.unwrap_or(0.0) != 0.0 {
+                            return Err(format!(
+                                "-q: a {part} bound is not supported, only the radius-edge \
+                                 ratio (in '{arg}')"
+                            ));
+                        }
+                    }
+                }
+            }
+            'a' => match run_after(&chars, &mut j, exp_number).map(|r| strtod(&r)) {
+                Some(v) if v > 0.0 => sw.max_volume = Some(v),
+                Some(_) => return Err("-a: the maximum volume must be greater than zero".into()),
+                None => sw.region_volume = true,
+            },
+            'S' => {
+                if let Some(run) = run_after(&chars, &mut j, exp_number) {
+                    let digits: String = run.chars().take_while(|c| c.is_ascii_digit()).collect();
+                    let n = if digits.is_empty() {
+                        0
+                    } else {
+                        digits
+                            .parse::<u64>()
+                            .map_err(|_| "-S: the Steiner point limit is too large".to_string())?
+                    };
+                    sw.max_steiner = Some(n);
+                }
+            }
+            'A' => sw.region_attributes = true,
+            'z' => sw.zero_based = true,
+            'f' => sw.all_faces = true,
+            'e' => sw.edges = true,
+            'n' => sw.neighbors = true,
+            'N' => sw.no_node = true,
+            'E' => sw.no_ele = true,
+            'F' => sw.no_face = true,
+            'B' => sw.no_markers = true,
+            'I' => sw.no_iteration = true,
+            'd' => sw.detect = true,
+            'C' => sw.check = true,
+            'Q' => sw.quiet = true,
+            'V' => sw.verbose = true,
+            // What idmesh always does: conforming Delaunay output (D, with TetGen's optional
+            // level), no merging of coplanar facets (M), no jettisoning (J).
+            'D' => {
+                if chars.get(j + 1).is_some_and(|c| ('1'..='3').contains(c)) {
+                    j += 1;
+                }
+            }
+            'M' | 'J' => {}
+            'h' | 'H' | '?' => {
+                return Err(format!(
+                    "-{} inside a switch group; use 'idmesh tetgen --help'",
+                    chars[j]
+                ))
+            }
+            c if c.is_ascii_digit() || "+-./,".contains(c) => {
+                return Err(format!(
+                    "unexpected '{c}' in '{arg}': only p, q, a and S take numbers, right after \
+                     the letter"
+                ))
+            }
+            c => {
+                return Err(match unsupported(c) {
+                    Some(what) => format!("switch -{c} ({what}) is not supported (in '{arg}')"),
+                    None => format!("unknown switch -{c} (in '{arg}'); try 'idmesh tetgen --help'"),
+                })
+            }
+        }
+        j += 1;
+    }
+    Ok(())
+}
+
+/// Parses the arguments after `idmesh tetgen`. Implications are applied as TetGen applies
+/// them: `a<volume>` turns on `q`; `q` and `d` turn on `p`.
+pub fn parse(args: &[String]) -> Result<Parsed, String> {
+    let mut sw = TetSwitches::default();
+    let mut file: Option<&String> = None;
+    for arg in args {
+        if arg == "--help" || arg == "-h" {
+            return Ok(Parsed::Help);
+        } else if arg.starts_with("--") {
+            return Err(format!(
+                "unknown option '{arg}'; try 'idmesh tetgen --help'"
+            ));
+        } else if arg.starts_with('-') {
+            parse_group(arg, &mut sw)?;
+        } else if let Some(first) = file {
+            return Err(format!(
+                "more than one input file given: '{first}' and '{arg}'"
+            ));
+        } else {
+            file = Some(arg);
+        }
+    }
+    if sw.max_volume.is_some() && sw.radius_edge.is_none() {
+        sw.radius_edge = Some(2.0);
+    }
+    if sw.radius_edge.is_some() || sw.detect {
+        sw.plc = true;
+    }
+    match file {
+        Some(f) => Ok(Parsed::Run {
+            switches: sw,
+            file: f.clone(),
+        }),
+        None => Err("no input file given; try 'idmesh tetgen --help'".into()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run(args: &[&str]) -> Result<(TetSwitches, String), String> {
+        let args: Vec<String> = args.iter().map(|s| s.to_string()).collect();
+        match parse(&args)? {
+            Parsed::Run { switches, file } => Ok((switches, file)),
+            Parsed::Help => Err("help".into()),
+        }
+    }
+
+    #[test]
+    fn parses_a_typical_group() {
+        let (s, f) = run(&["-pq1.414a0.1V", "box.poly"]).unwrap();
+        assert_eq!(f, "box.poly");
+        assert!(s.plc && s.verbose && !s.quiet);
+        assert_eq!(s.radius_edge, Some(1.414));
+        assert_eq!(s.max_volume, Some(0.1));
+        assert!(!s.region_volume);
+    }
+
+    #[test]
+    fn q_alone_is_two_and_implies_p_and_a_implies_q() {
+        let (s, _) = run(&["-q", "x"]).unwrap();
+        assert_eq!(s.radius_edge, Some(2.0));
+        assert!(s.plc);
+        let (s, _) = run(&["-a0.5", "x"]).unwrap();
+        assert_eq!((s.radius_edge, s.max_volume), (Some(2.0), Some(0.5)));
+        assert!(s.plc);
+        // 'a' alone (regional bounds) implies neither.
+        let (s, _) = run(&["-a", "x"]).unwrap();
+        assert!(s.region_volume && !s.plc && s.radius_edge.is_none());
+    }
+
+    #[test]
+    fn volume_numbers_take_exponents_like_tetgen() {
+        let (s, _) = run(&["-pa1e-5", "x"]).unwrap();
+        assert_eq!(s.max_volume, Some(1e-5));
+        // The 'e' is swallowed by the number: no .edge file.
+        let (s, _) = run(&["-pa0.1e", "x"]).unwrap();
+        assert_eq!(s.max_volume, Some(0.1));
+        assert!(!s.edges);
+        let (s, _) = run(&["-pea0.1", "x"]).unwrap();
+        assert!(s.edges);
+        // The ratio takes no exponent: 'e' after it is the edge switch.
+        let (s, _) = run(&["-q1.2e", "x"]).unwrap();
+        assert_eq!(s.radius_edge, Some(1.2));
+        assert!(s.edges);
+        assert!(run(&["-pa0", "x"])
+            .unwrap_err()
+            .contains("greater than zero"));
+        assert!(run(&["-pa.", "x"])
+            .unwrap_err()
+            .contains("greater than zero"));
+    }
+
+    #[test]
+    fn dihedral_part_and_steiner_limit() {
+        let (s, _) = run(&["-pq1.5/0", "x"]).unwrap();
+        assert_eq!(s.radius_edge, Some(1.5));
+        let e = run(&["-pq1.5/10", "x"]).unwrap_err();
+        assert!(e.contains("dihedral") && e.contains("not supported"), "{e}");
+        let (s, _) = run(&["-pS120", "x"]).unwrap();
+        assert_eq!(s.max_steiner, Some(120));
+        let (s, _) = run(&["-pS", "x"]).unwrap();
+        assert_eq!(s.max_steiner, None, "S alone sets no limit, as in TetGen");
+        let (s, _) = run(&["-pS1e3", "x"]).unwrap();
+        assert_eq!(s.max_steiner, Some(1), "strtol stops at the 'e'");
+        assert!(run(&["-S99999999999999999999999", "x"]).is_err());
+    }
+
+    #[test]
+    fn output_and_accepted_letters() {
+        let (s, _) = run(&["-pzfenNEFBIACQ", "x"]).unwrap();
+        assert!(s.zero_based && s.all_faces && s.edges && s.neighbors);
+        assert!(s.no_node && s.no_ele && s.no_face && s.no_markers && s.no_iteration);
+        assert!(s.region_attributes && s.check && s.quiet);
+        let (s, _) = run(&["-pMJD2", "x"]).unwrap();
+        assert_eq!(
+            s,
+            TetSwitches {
+                plc: true,
+                ..TetSwitches::default()
+            }
+        );
+        let (s, _) = run(&["-d", "x"]).unwrap();
+        assert!(s.detect && s.plc);
+    }
+
+    #[test]
+    fn unsupported_and_unknown_switches_are_errors_naming_them() {
+        let e = run(&["-pY", "x"]).unwrap_err();
+        assert!(e.contains("-Y") && e.contains("not supported"), "{e}");
+        let e = run(&["-pc", "x"]).unwrap_err();
+        assert!(e.contains("-c") && e.contains("convex hull"), "{e}");
+        let e = run(&["-p1.5", "x"]).unwrap_err();
+        assert!(e.contains("-p"), "{e}");
+        let e = run(&["-pqx", "x"]).unwrap_err();
+        assert!(e.contains("-x") && e.contains("-pqx"), "{e}");
+        assert!(run(&["-", "x"]).is_err());
+        assert!(run(&["--frobnicate", "x"])
+            .unwrap_err()
+            .contains("--frobnicate"));
+        assert!(run(&["-p/", "x"]).unwrap_err().contains("'/'"));
+    }
+
+    #[test]
+    fn file_count_is_checked_and_help_is_recognised() {
+        assert!(run(&["-p"]).unwrap_err().contains("no input file"));
+        assert!(run(&["a", "b"]).unwrap_err().contains("more than one"));
+        let args = vec!["-p".to_string(), "--help".to_string()];
+        assert_eq!(parse(&args).unwrap(), Parsed::Help);
+    }
+}

@@ -1,0 +1,287 @@
+//! Writers for TetGen's output formats: `.node`, `.ele`, `.face`, `.edge`, `.neigh`, and a
+//! PLC as a self-contained `.poly` file.
+//!
+//! Layouts follow TetGen's output (a header line, then one item per line numbered from
+//! `base`); fields are separated by single spaces and floats are written with [`Real`] so that
+//! they read back exactly. Every writer buffers internally, so passing a bare `File` is fine.
+
+use std::collections::HashMap;
+use std::io::{self, BufWriter, Write};
+
+use super::numfmt::Real;
+use crate::input3d::Plc;
+use crate::mesh3d::{TetMesh, NONE};
+
+const BUFFER: usize = 1 << 16;
+
+fn invalid(message: String) -> io::Error {
+    io::Error::new(io::ErrorKind::InvalidData, message)
+}
+
+fn check_len(what: &str, got: usize, expected: usize) -> io::Result<()> {
+    if got != expected {
+        return Err(invalid(format!(
+            "{got} {what} entries, expected {expected}"
+        )));
+    }
+    Ok(())
+}
+
+/// Writes the `.node` file of `mesh`: header `n 3 0 m`, then `i x y z [marker]` per vertex
+/// (markers when `markers` is set, as TetGen does when the input had point markers).
+pub fn write_node<W: Write>(out: W, mesh: &TetMesh, base: u32, markers: bool) -> io::Result<()> {
+    if markers {
+        check_len(
+            "vertex marker",
+            mesh.vertex_markers.len(),
+            mesh.vertices.len(),
+        )?;
+    }
+    let mut w = BufWriter::with_capacity(BUFFER, out);
+    writeln!(w, "{} 3 0 {}", mesh.vertices.len(), markers as u8)?;
+    let b = base as u64;
+    for (i, p) in mesh.vertices.iter().enumerate() {
+        write!(
+            w,
+            "{} {} {} {}",
+            i as u64 + b,
+            Real(p[0]),
+            Real(p[1]),
+            Real(p[2])
+        )?;
+        if markers {
+            write!(w, " {}", mesh.vertex_markers[i])?;
+        }
+        w.write_all(b"\n")?;
+    }
+    w.flush()
+}
+
+/// Writes the `.ele` file of `mesh`: header `n 4 a` (`a` is 1 when the mesh carries regional
+/// attributes, else 0), then `i v0 v1 v2 v3 [attribute]` per tetrahedron, positively
+/// oriented as in TetGen.
+pub fn write_ele<W: Write>(out: W, mesh: &TetMesh, base: u32) -> io::Result<()> {
+    let nt = mesh.tets.len();
+    let with_attr = !mesh.tet_attributes.is_empty();
+    if with_attr {
+        check_len("tetrahedron attribute", mesh.tet_attributes.len(), nt)?;
+    }
+    let mut w = BufWriter::with_capacity(BUFFER, out);
+    writeln!(w, "{nt} 4 {}", with_attr as u8)?;
+    let b = base as u64;
+    for (i, t) in mesh.tets.iter().enumerate() {
+        write!(
+            w,
+            "{} {} {} {} {}",
+            i as u64 + b,
+            t[0] as u64 + b,
+            t[1] as u64 + b,
+            t[2] as u64 + b,
+            t[3] as u64 + b
+        )?;
+        if with_attr {
+            write!(w, " {}", Real(mesh.tet_attributes[i]))?;
+        }
+        w.write_all(b"\n")?;
+    }
+    w.flush()
+}
+
+/// Writes `<count> <markers>` and one `i v.. [marker]` line per simplex.
+fn write_simplices<W: Write, const K: usize>(
+    out: W,
+    items: &[[u32; K]],
+    item_markers: Option<&[i32]>,
+    base: u32,
+) -> io::Result<()> {
+    let mut w = BufWriter::with_capacity(BUFFER, out);
+    writeln!(w, "{} {}", items.len(), item_markers.is_some() as u8)?;
+    let b = base as u64;
+    for (i, s) in items.iter().enumerate() {
+        write!(w, "{}", i as u64 + b)?;
+        for v in s {
+            write!(w, " {}", *v as u64 + b)?;
+        }
+        if let Some(m) = item_markers {
+            write!(w, " {}", m[i])?;
+        }
+        w.write_all(b"\n")?;
+    }
+    w.flush()
+}
+
+/// Writes the `.face` file of `mesh`: its subfaces (boundary faces and faces in facets),
+/// header `n m`, then `i a b c [marker]`.
+pub fn write_face<W: Write>(out: W, mesh: &TetMesh, base: u32, markers: bool) -> io::Result<()> {
+    let m = if markers {
+        check_len("face marker", mesh.face_markers.len(), mesh.faces.len())?;
+        Some(mesh.face_markers.as_slice())
+    } else {
+        None
+    };
+    write_simplices(out, &mesh.faces, m, base)
+}
+
+/// Writes every face of the tetrahedralization once (TetGen's `-f`), in tetrahedron order;
+/// the marker of a subface is its facet's, 0 for other faces.
+pub fn write_all_faces<W: Write>(
+    out: W,
+    mesh: &TetMesh,
+    base: u32,
+    markers: bool,
+) -> io::Result<()> {
+    check_len("neighbour", mesh.neighbors.len(), mesh.tets.len())?;
+    check_len("face marker", mesh.face_markers.len(), mesh.faces.len())?;
+    let sorted = |f: [u32; 3]| {
+        let mut k = f;
+        k.sort_unstable();
+        k
+    };
+    let marker_of: HashMap<[u32; 3], i32> = mesh
+        .faces
+        .iter()
+        .zip(&mesh.face_markers)
+        .map(|(f, &m)| (sorted(*f), m))
+        .collect();
+    let mut faces = Vec::new();
+    let mut face_markers = Vec::new();
+    for (t, tv) in mesh.tets.iter().enumerate() {
+        for i in 0..4 {
+            let n = mesh.neighbors[t][i];
+            if n != NONE && n as usize <= t {
+                continue;
+            }
+            // The face opposite corner i, ordered so that it is seen counter-clockwise from
+            // outside the tetrahedron.
+            let f = match i {
+                0 => [tv[1], tv[2], tv[3]],
+                1 => [tv[0], tv[3], tv[2]],
+                2 => [tv[0], tv[1], tv[3]],
+                _ => [tv[0], tv[2], tv[1]],
+            };
+            faces.push(f);
+            face_markers.push(marker_of.get(&sorted(f)).copied().unwrap_or(0));
+        }
+    }
+    write_simplices(
+        out,
+        &faces,
+        markers.then_some(face_markers.as_slice()),
+        base,
+    )
+}
+
+/// Writes the `.edge` file of `mesh`: its subsegments, header `n m`, then `i a b [marker]`.
+pub fn write_edge<W: Write>(out: W, mesh: &TetMesh, base: u32, markers: bool) -> io::Result<()> {
+    let m = if markers {
+        check_len("edge marker", mesh.edge_markers.len(), mesh.edges.len())?;
+        Some(mesh.edge_markers.as_slice())
+    } else {
+        None
+    };
+    write_simplices(out, &mesh.edges, m, base)
+}
+
+/// Writes the `.neigh` file of `mesh`: header `n 4`, then `i n0 n1 n2 n3` where `nk` is the
+/// tetrahedron opposite corner `k`, numbered from `base`, or -1 on the boundary.
+pub fn write_neigh<W: Write>(out: W, mesh: &TetMesh, base: u32) -> io::Result<()> {
+    check_len("neighbour", mesh.neighbors.len(), mesh.tets.len())?;
+    let b = base as i64;
+    let id = |n: u32| if n == NONE { -1 } else { n as i64 + b };
+    let mut w = BufWriter::with_capacity(BUFFER, out);
+    writeln!(w, "{} 4", mesh.neighbors.len())?;
+    for (i, n) in mesh.neighbors.iter().enumerate() {
+        writeln!(
+            w,
+            "{} {} {} {} {}",
+            i as i64 + b,
+            id(n[0]),
+            id(n[1]),
+            id(n[2]),
+            id(n[3])
+        )?;
+    }
+    w.flush()
+}
+
+/// Writes a PLC as a self-contained `.poly` file numbered from `base`: the inverse of
+/// [`super::tetgen::parse_poly`]. Point markers are written when the PLC has them; facet
+/// markers always. TetGen's `.poly` format has no section for free segments, so a PLC with
+/// segments is refused.
+pub fn write_plc_poly<W: Write>(out: W, plc: &Plc, base: u32) -> io::Result<()> {
+    if !plc.segments.is_empty() {
+        return Err(invalid(format!(
+            "the PLC has {} free segments, which TetGen's .poly format cannot hold",
+            plc.segments.len()
+        )));
+    }
+    let np = plc.points.len();
+    let markers = !plc.point_markers.is_empty();
+    if markers {
+        check_len("point marker", plc.point_markers.len(), np)?;
+    }
+    let b = base as u64;
+    let mut w = BufWriter::with_capacity(BUFFER, out);
+    writeln!(w, "{np} 3 0 {}", markers as u8)?;
+    for (i, p) in plc.points.iter().enumerate() {
+        write!(
+            w,
+            "{} {} {} {}",
+            i as u64 + b,
+            Real(p[0]),
+            Real(p[1]),
+            Real(p[2])
+        )?;
+        if markers {
+            write!(w, " {}", plc.point_markers[i])?;
+        }
+        w.write_all(b"\n")?;
+    }
+    writeln!(w, "{} 1", plc.facets.len())?;
+    for f in &plc.facets {
+        writeln!(w, "{} {} {}", f.polygons.len(), f.holes.len(), f.marker)?;
+        for poly in &f.polygons {
+            write!(w, "{}", poly.len())?;
+            for v in poly {
+                write!(w, " {}", *v as u64 + b)?;
+            }
+            w.write_all(b"\n")?;
+        }
+        for (j, h) in f.holes.iter().enumerate() {
+            writeln!(
+                w,
+                "{} {} {} {}",
+                j as u64 + b,
+                Real(h[0]),
+                Real(h[1]),
+                Real(h[2])
+            )?;
+        }
+    }
+    writeln!(w, "{}", plc.holes.len())?;
+    for (i, h) in plc.holes.iter().enumerate() {
+        writeln!(
+            w,
+            "{} {} {} {}",
+            i as u64 + b,
+            Real(h[0]),
+            Real(h[1]),
+            Real(h[2])
+        )?;
+    }
+    writeln!(w, "{}", plc.regions.len())?;
+    for (i, r) in plc.regions.iter().enumerate() {
+        // A negative volume is TetGen's "no bound".
+        writeln!(
+            w,
+            "{} {} {} {} {} {}",
+            i as u64 + b,
+            Real(r.point[0]),
+            Real(r.point[1]),
+            Real(r.point[2]),
+            Real(r.attribute),
+            Real(r.max_volume.unwrap_or(-1.0))
+        )?;
+    }
+    w.flush()
+}

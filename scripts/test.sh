@@ -35,6 +35,8 @@ bash scripts/ctest.sh
 if [ -d ../shared/data/2d ]; then
   echo "== conformance against ../shared/data/2d"
   bash conformance/run2d.sh
+  echo "== conformance against ../shared/data/3d"
+  bash conformance/run3d.sh
 else
   echo "== conformance skipped: ../shared not found"
 fi

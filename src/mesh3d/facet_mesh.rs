@@ -233,6 +233,7 @@ impl FacetMesh {
     }
 
     /// Every live triangle inside the facet, as vertex triples.
+    #[cfg(test)]
     pub fn inside_triangles(&self) -> Vec<[u32; 3]> {
         (0..self.tv.len())
             .filter(|&t| self.alive[t] && self.inside[t])

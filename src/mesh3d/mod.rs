@@ -37,7 +37,7 @@ pub type SizingFn3 = Arc<dyn Fn([f64; 3], [f64; 3], [f64; 3], [f64; 3], f64) -> 
 
 /// Meshing options for [`tetrahedralize`]. `Options3::default()` gives a conforming Delaunay
 /// tetrahedralization of the PLC with no quality or size refinement.
-#[derive(Clone)]
+#[derive(Clone, Default)]
 pub struct Options3 {
     /// Maximum radius-edge ratio (TetGen's `-q`). `None`: no quality refinement. Must be at
     /// least 1.0; bounds below about 1.2 may not terminate (as in TetGen). Tetrahedra near
@@ -56,20 +56,6 @@ pub struct Options3 {
     pub sizing: Option<SizingFn3>,
     /// Print progress lines to standard error during long runs. Default: `false`.
     pub verbose: bool,
-}
-
-impl Default for Options3 {
-    fn default() -> Self {
-        Options3 {
-            radius_edge: None,
-            max_volume: None,
-            region_max_volume: false,
-            region_attributes: false,
-            max_steiner: None,
-            sizing: None,
-            verbose: false,
-        }
-    }
 }
 
 impl fmt::Debug for Options3 {

@@ -22,6 +22,9 @@ use crate::geometry::{tet_circumcenter, tet_radius_edge, tet_volume, tri_circumc
 use crate::input3d::Plc;
 use crate::predicates::{in_diametral_ball_seg3, in_diametral_ball_tri, orient3d};
 
+/// Refinement stops (with an error) before the kernel's slot space runs out.
+const MAX_TET_SLOTS: usize = (1 << 30) - 1024;
+
 /// Region id of tetrahedra outside the domain (exterior or holes).
 const OUTSIDE: u32 = u32::MAX;
 
@@ -218,6 +221,12 @@ impl Mesher<'_> {
             Located::InTet(t) => t,
             Located::Vertex(_) => return Err(Vec::new()),
         };
+        if std::env::var("IDM_DBG3").is_ok() {
+            eprintln!(
+                "insert3d {v} {p:?} provisional {provisional} slots {}",
+                self.tets.num_slots()
+            );
+        }
         if !self.tets.find_cavity(p, start) {
             self.tets.cancel_cavity();
             return Err(Vec::new());
@@ -329,7 +338,16 @@ impl Mesher<'_> {
     /// The work loop: subsegments, then subfaces, then tetrahedra (Definition 4.1).
     fn run(&mut self) -> Result<(), Error> {
         let budget = 1u64 << 40;
-        for _ in 0..budget {
+        for it in 0..budget {
+            if self.opts.verbose && it % (1 << 12) == (1 << 12) - 1 {
+                eprintln!(
+                    "idmesh: work queue: {} subsegments, {} subfaces, {} tets; {} Steiner points",
+                    self.seg_q.len(),
+                    self.face_q.len(),
+                    self.tet_q.len(),
+                    self.steiner
+                );
+            }
             if let Some((s, force)) = self.seg_q.pop_front() {
                 self.take_subseg(s, force)?;
             } else if let Some((f, fid, force)) = self.face_q.pop_front() {
@@ -339,6 +357,9 @@ impl Mesher<'_> {
                     self.complete = false;
                     self.tet_q.clear();
                     continue;
+                }
+                if self.tets.num_slots() > MAX_TET_SLOTS {
+                    return Err(Error::Internal("out of tetrahedron slots".into()));
                 }
                 self.take_tet(t, vs)?;
             } else {
@@ -360,6 +381,11 @@ impl Mesher<'_> {
             }
         }
         let _ = t0;
+        if !self.sharp.is_empty() {
+            // Lazy mode (small input angles): vertices of nearby features would encroach each
+            // other's subsegments forever; only refused circumcenters split them.
+            return false;
+        }
         // The edge's link: a vertex strictly inside the diametral ball of a Delaunay edge shows
         // up among the tetrahedra around it.
         let mut star = Vec::new();
@@ -447,6 +473,9 @@ impl Mesher<'_> {
         let Some(h) = self.tets.find_face(v[0], v[1], v[2]) else {
             return true;
         };
+        if !self.sharp.is_empty() {
+            return false; // lazy mode, as for subsegments
+        }
         let [a, b, c] = v.map(|x| self.pts[x as usize]);
         let (t, f) = (h / 4, (h % 4) as usize);
         let (n, nf) = self.tets.neighbor(t, f);
@@ -471,20 +500,33 @@ impl Mesher<'_> {
             return Err(Error::Internal(format!("degenerate subface {v:?}")));
         };
         let m = self.new_vertex(cc)?;
-        match self.facet_insert(fid, m, true, None) {
-            Ok(()) => {}
-            Err(FacetInsertError::Encroaches(segs)) => {
-                self.pts.pop();
-                for s in segs {
-                    self.seg_q.push_front((s, true));
+        let mut tried_centroid = false;
+        loop {
+            match self.facet_insert(fid, m, true, None) {
+                Ok(()) => break,
+                // The circumcenter rounds onto an existing vertex (the facet mesh is then not
+                // quite Delaunay around it): split at the centroid instead.
+                Err(FacetInsertError::Duplicate(_) | FacetInsertError::Lost) if !tried_centroid => {
+                    tried_centroid = true;
+                    self.pts[m as usize] = [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0);
+                    continue;
                 }
-                self.face_q.push_back((v, fid, force));
-                return Ok(());
-            }
-            Err(e) => {
-                return Err(Error::Internal(format!(
-                    "circumcenter of subface {v:?} in facet {fid}: {e:?}"
-                )))
+                r => match r {
+                    Err(FacetInsertError::Encroaches(segs)) => {
+                        self.pts.pop();
+                        for s in segs {
+                            self.seg_q.push_front((s, true));
+                        }
+                        self.face_q.push_back((v, fid, force));
+                        return Ok(());
+                    }
+                    Err(e) => {
+                        return Err(Error::Internal(format!(
+                            "circumcenter of subface {v:?} in facet {fid}: {e:?}"
+                        )))
+                    }
+                    Ok(()) => break,
+                },
             }
         }
         self.steiner += 1;
@@ -577,11 +619,21 @@ impl Mesher<'_> {
         let ghosts: Vec<u32> = (0..ns as u32)
             .filter(|&t| self.tets.alive(t) && self.tets.is_ghost(t))
             .collect();
-        self.flood(&ghosts, OUTSIDE, &mut seen, &mut stack);
+        if self.feat.facets.is_empty() {
+            // No facets (a point set with -q): the convex hull is the domain, as in TetGen.
+            for &g in &ghosts {
+                seen[g as usize] = true;
+                self.region[g as usize] = OUTSIDE;
+            }
+        } else {
+            self.flood(&ghosts, OUTSIDE, &mut seen, &mut stack);
+        }
         for (i, h) in plc.holes.iter().enumerate() {
-            let t = self
-                .seed_tet(*h)
-                .ok_or_else(|| Error::Input(crate::InputError::HoleOutsideDomain { hole: i }))?;
+            let t =
+                self.seed_tet(*h)
+                    .ok_or(Error::Input(crate::InputError::HoleOutsideDomain {
+                        hole: i,
+                    }))?;
             self.flood(&[t], OUTSIDE, &mut seen, &mut stack);
         }
         for (i, r) in plc.regions.iter().enumerate() {
@@ -688,17 +740,31 @@ impl Mesher<'_> {
         } else {
             Vec::new()
         };
-        let mut faces: Vec<([u32; 3], u32)> =
-            self.feat.subfaces.iter().map(|(k, &f)| (*k, f)).collect();
+        // Subfaces with the domain on at least one side (a facet between two holes is not
+        // part of the mesh).
+        let mut bounding = std::collections::HashSet::new();
+        for &t in &slots {
+            let vs = self.tets.verts(t);
+            for f in 0..4 {
+                bounding.insert(fkey(face_of(vs, f)));
+            }
+        }
+        let mut faces: Vec<([u32; 3], u32)> = self
+            .feat
+            .subfaces
+            .iter()
+            .filter(|(k, _)| bounding.contains(*k))
+            .map(|(k, &f)| (*k, f))
+            .collect();
         faces.sort_unstable();
-        let face_markers = faces
+        let face_markers: Vec<i32> = faces
             .iter()
             .map(|&(_, f)| self.feat.facets[f as usize].marker)
             .collect();
         let faces: Vec<[u32; 3]> = faces.into_iter().map(|(k, _)| k).collect();
         let mut edges: Vec<(u64, u32)> = self.feat.subsegs.iter().map(|(k, &e)| (*k, e)).collect();
         edges.sort_unstable();
-        let edge_markers = edges
+        let edge_markers: Vec<i32> = edges
             .iter()
             .map(|&(_, e)| self.feat.edges[e as usize].marker)
             .collect();
@@ -717,19 +783,53 @@ impl Mesher<'_> {
                 }
             }
         }
+        // Steiner vertices no tet uses (on facets and edges inside holes) are dropped; input
+        // vertices keep their indices whether used or not.
+        let mut new_id = vec![NONE; self.pts.len()];
+        for (i, id) in new_id.iter_mut().enumerate().take(self.num_input) {
+            *id = i as u32;
+        }
+        let mut vertices: Vec<[f64; 3]> = self.pts[..self.num_input].to_vec();
+        let mut markers: Vec<i32> = vertex_markers[..self.num_input].to_vec();
+        for t in &tets {
+            for &v in t {
+                if new_id[v as usize] == NONE {
+                    new_id[v as usize] = vertices.len() as u32;
+                    vertices.push(self.pts[v as usize]);
+                    markers.push(vertex_markers[v as usize]);
+                }
+            }
+        }
+        let map = |v: u32| new_id[v as usize];
+        let tets: Vec<[u32; 4]> = tets.iter().map(|t| t.map(map)).collect();
+        let mut faces2 = Vec::with_capacity(faces.len());
+        let mut face_markers2 = Vec::with_capacity(faces.len());
+        for (f, m) in faces.iter().zip(face_markers.iter()) {
+            faces2.push(f.map(map));
+            face_markers2.push(*m);
+        }
+        let mut edges2 = Vec::with_capacity(edges.len());
+        let mut edge_markers2 = Vec::with_capacity(edges.len());
+        for (e, m) in edges.iter().zip(edge_markers.iter()) {
+            if e.iter().all(|&v| new_id[v as usize] != NONE) {
+                edges2.push(e.map(map));
+                edge_markers2.push(*m);
+            }
+        }
+        let steiner_points = vertices.len() - self.num_input;
         let mesh = TetMesh {
-            vertices: self.pts.clone(),
-            vertex_markers,
+            vertices,
+            vertex_markers: markers,
             num_input_vertices: self.num_input,
             tets,
             neighbors,
             tet_attributes,
-            faces,
-            face_markers,
-            edges,
-            edge_markers,
+            faces: faces2,
+            face_markers: face_markers2,
+            edges: edges2,
+            edge_markers: edge_markers2,
             complete: self.complete,
-            steiner_points: self.pts.len() - self.num_input,
+            steiner_points,
         };
         let _ = ekey;
         Ok(mesh)
@@ -827,6 +927,11 @@ impl Sharp {
             }
         }
         sharp
+    }
+
+    /// Whether the input has no small angle at all.
+    fn is_empty(&self) -> bool {
+        self.vertices.is_empty() && self.edges.is_empty() && self.facet_pairs.is_empty()
     }
 
     /// Whether a tet with these vertices touches a small input angle.

@@ -1,0 +1,133 @@
+#!/usr/bin/env bash
+# 3D conformance check: meshes every case of conformance/cases3d.txt with
+# `idmesh tetgen` and judges the output with the shared verifier
+# (../shared/tools/verify3d.py, relative to the repository root).
+#
+# Usage: conformance/run3d.sh            (from any directory)
+# Environment:
+#   IDMESH_BIN       use this idmesh binary instead of building target/release/idmesh
+#   IDMESH_TIMEOUT   seconds allowed per idmesh run (default 600)
+#   KEEP_WORK=1      keep the temporary directory with every case's files
+#
+# Prints one line per case (PASS/FAIL, tetrahedron count, meshing time), the verifier's
+# failing checks under a failed case, and a final "N passed, M failed" line.
+# Exit status: 0 when every case passes or when ../shared is absent (skipped), 1 otherwise.
+set -uo pipefail
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+root="$(cd "$here/.." && pwd)"
+shared="$(cd "$root/.." && pwd)/shared"
+data="$shared/data/3d"
+verifier="$shared/tools/verify3d.py"
+cases="$here/cases3d.txt"
+
+if [ ! -d "$data" ] || [ ! -f "$verifier" ]; then
+    echo "run3d: $shared (data/3d and tools/verify3d.py) not found; skipping the 2D conformance check"
+    exit 0
+fi
+
+if ! python3 -c 'import numpy, scipy' 2>/dev/null; then
+    echo "run3d: installing numpy and scipy for the verifier"
+    python3 -m pip install --quiet numpy scipy 2>/dev/null \
+        || python3 -m pip install --quiet --break-system-packages numpy scipy \
+        || { echo "run3d: cannot install numpy/scipy"; exit 1; }
+fi
+
+if [ -n "${IDMESH_BIN:-}" ]; then
+    # Made absolute: every case runs in its own directory.
+    case "$IDMESH_BIN" in
+        */*) bin="$(cd "$(dirname "$IDMESH_BIN")" && pwd)/$(basename "$IDMESH_BIN")" ;;
+        *) bin="$(command -v "$IDMESH_BIN")" ;;
+    esac
+    [ -x "$bin" ] || { echo "run3d: IDMESH_BIN=$IDMESH_BIN is not an executable"; exit 1; }
+else
+    (cd "$root" && cargo build --release --quiet --bin idmesh) || {
+        echo "run3d: cargo build --release failed"
+        exit 1
+    }
+    bin="$root/target/release/idmesh"
+fi
+timeout_s="${IDMESH_TIMEOUT:-600}"
+
+work="$(mktemp -d "${TMPDIR:-/tmp}/idmesh-conformance.XXXXXX")"
+if [ "${KEEP_WORK:-0}" = 1 ]; then
+    echo "run3d: keeping work files in $work"
+else
+    trap 'rm -rf "$work"' EXIT
+fi
+
+# First field of the first non-comment line of a file (the item count of a TetGen file).
+count_of() {
+    awk '{ sub(/#.*/, "") } NF { print $1; exit }' "$1" 2>/dev/null
+}
+
+passed=0
+failed=0
+missing=0
+listed=" "
+case_no=0
+while IFS= read -r line || [ -n "$line" ]; do
+    line="${line%%#*}"
+    read -r -a tok <<<"$line"
+    [ "${#tok[@]}" -eq 0 ] && continue
+    case_no=$((case_no + 1))
+    file="${tok[0]}"
+    switches="${tok[1]:-}"
+    listed="$listed$file "
+    extra=("${tok[@]:2}")
+    label="$(printf '%-26s %-16s' "$file" "$switches")"
+    dir="$work/case$case_no"
+    mkdir -p "$dir"
+    if [ ! -f "$data/$file" ]; then
+        echo "FAIL $label input $data/$file not found"
+        failed=$((failed + 1))
+        continue
+    fi
+    cp "$data/$file" "$dir/"
+    stem="${file%.*}"
+    [ -f "$data/$stem.node" ] && [ "$file" != "$stem.node" ] && cp "$data/$stem.node" "$dir/"
+
+    t0=$(date +%s.%N)
+    (cd "$dir" && timeout "$timeout_s" "$bin" tetgen "$switches" -Q "$file") \
+        >"$dir/idmesh.out" 2>&1
+    rc=$?
+    t1=$(date +%s.%N)
+    secs=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.2f", b - a }')
+    ntet="$(count_of "$dir/$stem.1.ele")"
+    ntet="${ntet:-?}"
+    result="$(printf '%8s tets %7s s' "$ntet" "$secs")"
+
+    if [ "$rc" -ne 0 ]; then
+        echo "FAIL $label idmesh exit $rc after $secs s"
+        sed 's/^/       /' "$dir/idmesh.out" | tail -5
+        failed=$((failed + 1))
+        continue
+    fi
+    vinput="$dir/$file"
+    if python3 "$verifier" "$vinput" "$dir/$stem.1.node" "$dir/$stem.1.ele" "$dir/$stem.1.face" \
+        --require-delaunay "${extra[@]}" >"$dir/verify.out" 2>&1; then
+        echo "PASS $label $result"
+        passed=$((passed + 1))
+    else
+        echo "FAIL $label $result"
+        grep -E '\[FAIL\]|^ *!|Error|error' "$dir/verify.out" | head -12 | sed 's/^/       /'
+        failed=$((failed + 1))
+    fi
+done <"$cases"
+
+# Every input in the shared data set must have at least one case.
+for f in "$data"/*.poly "$data"/*.smesh "$data"/*.off "$data"/*.stl "$data"/*.ply "$data"/*.mesh; do
+    [ -e "$f" ] || continue
+    name="$(basename "$f")"
+    case "$listed" in
+        *" $name "*) ;;
+        *)
+            # Not yet a failure: issue 3 is done only when every file has a passing case.
+            echo "TODO $(printf '%-26s' "$name") has no case in conformance/cases3d.txt yet"
+            missing=$((missing + 1))
+            ;;
+    esac
+done
+
+echo "$passed passed, $failed failed, ${missing:-0} input files without a case"
+[ "$failed" -eq 0 ]

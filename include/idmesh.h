@@ -142,8 +142,9 @@ typedef struct idm_options2d {
    */
   int32_t split_crossings;
   /**
-   * Forbid Steiner points on boundary segments (Triangle's `-Y`); not implemented yet, so
-   * refine returns `IDM_ERR_UNSUPPORTED` when set. Default 0.
+   * Forbid Steiner points on boundary segments (Triangle's `-Y`): the mesh is then
+   * constrained Delaunay along them, and triangles next to them may miss the quality bounds
+   * (as in Triangle). Default 0.
    */
   int32_t no_boundary_steiner;
   /**

@@ -78,8 +78,9 @@ pub struct idm_options2d {
     pub off_centers: i32,
     /// Split crossing segments at their intersection instead of reporting them. Default 0.
     pub split_crossings: i32,
-    /// Forbid Steiner points on boundary segments (Triangle's `-Y`); not implemented yet, so
-    /// refine returns `IDM_ERR_UNSUPPORTED` when set. Default 0.
+    /// Forbid Steiner points on boundary segments (Triangle's `-Y`): the mesh is then
+    /// constrained Delaunay along them, and triangles next to them may miss the quality bounds
+    /// (as in Triangle). Default 0.
     pub no_boundary_steiner: i32,
     /// Maximum number of Steiner points (Triangle's `-S`); `< 0` means no cap. When the cap is
     /// reached refine returns `IDM_INCOMPLETE`. Default -1.
@@ -851,7 +852,15 @@ pub unsafe extern "C" fn idm_mesher2d_validate(m: *const idm_mesher2d) -> idm_st
     guard(|| {
         // SAFETY: the caller's contract.
         let mesh = unsafe { mesh_of(m) }?;
-        mesh.validate().map_err(|msg| {
+        // SAFETY: `mesh_of` has just checked the pointer.
+        let constrained = unsafe { &*m }.opts.no_boundary_steiner;
+        // With -Y boundary segments are kept whole: the mesh is constrained Delaunay.
+        let checked = if constrained {
+            mesh.validate_constrained()
+        } else {
+            mesh.validate()
+        };
+        checked.map_err(|msg| {
             Failure::new(
                 idm_status::IDM_ERR_INTERNAL,
                 format!("mesh validation failed: {msg}"),
@@ -1375,14 +1384,18 @@ mod tests {
     }
 
     #[test]
-    fn unsupported_option_is_reported() {
+    fn no_boundary_steiner_keeps_boundary_segments_whole() {
         let m = Handle::new();
         load(&m, &square_with_hole());
-        let mut o = options(0.0, 0.0);
+        let mut o = options(25.0, 0.0);
         o.no_boundary_steiner = 1;
         assert_eq!(unsafe { idm_mesher2d_set_options(m.0, &o) }, IDM_OK);
-        assert_eq!(unsafe { idm_mesher2d_refine(m.0) }, IDM_ERR_UNSUPPORTED);
-        assert!(!last_error().is_empty());
+        assert_eq!(unsafe { idm_mesher2d_refine(m.0) }, IDM_OK, "{}", last_error());
+        assert_eq!(unsafe { idm_mesher2d_validate(m.0) }, IDM_OK, "{}", last_error());
+        // Every boundary subsegment joins two input vertices.
+        let mesh = unsafe { mesh_of(m.0) }.unwrap();
+        let n = mesh.num_input_vertices as u32;
+        assert!(mesh.segments.iter().all(|s| s[0] < n && s[1] < n));
     }
 
     #[test]

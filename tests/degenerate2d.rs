@@ -404,6 +404,58 @@ fn segments_meeting_at_0_1_degree() {
 }
 
 #[test]
+fn segment_ending_on_another_at_a_small_angle() {
+    // The T-junction vertex lies exactly inside the long segment (slope 2); the short one
+    // (slope 1.8) ends there, 2.5° away: a corner for concentric shells although no two input
+    // segments share an endpoint.
+    let mut b = Builder::default();
+    let outer = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    b.closed_loop(&outer);
+    let p = b.point([0.1875, 0.0625]);
+    let q = b.point([0.5, 0.6875]);
+    let t = b.point([0.25, 0.1875]);
+    let r = b.point([0.5625, 0.75]);
+    b.segment(p, q);
+    b.segment(t, r);
+    small_angle_case(&b.pslg, &square_spec(1.0), "T-junction 2.5°");
+}
+
+#[test]
+fn three_segments_crossing_at_one_unrepresentable_point() {
+    // All three pass through (1/3, 1/3); the three computed pairwise crossings differ by an
+    // ulp and must become one vertex.
+    let mut b = Builder::default();
+    let outer = vec![[-2.0, -2.0], [2.0, -2.0], [2.0, 2.0], [-2.0, 2.0]];
+    b.closed_loop(&outer);
+    for (u, v) in [
+        ([-1.0, -1.0], [1.0, 1.0]),
+        ([-1.0, 1.0], [1.0, 0.0]),
+        ([0.0, 1.0], [1.0, -1.0]),
+    ] {
+        let (i, j) = (b.point(u), b.point(v));
+        b.segment(i, j);
+    }
+    let spec = Spec {
+        area: Some(16.0),
+        outer: Some(outer),
+        ..Spec::default()
+    };
+    for opts in [Options::default(), quality(30.0)] {
+        let opts = Options {
+            split_crossings: true,
+            ..opts
+        };
+        let (mesh, _) = assert_mesh(&b.pslg, &opts, &spec);
+        assert!(mesh.complete);
+        let near: Vec<_> = mesh.vertices[b.pslg.points.len()..]
+            .iter()
+            .filter(|v| (v[0] - 1.0 / 3.0).abs() < 1e-9 && (v[1] - 1.0 / 3.0).abs() < 1e-9)
+            .collect();
+        assert_eq!(near.len(), 1, "crossing vertices near (1/3, 1/3): {near:?}");
+    }
+}
+
+#[test]
 fn many_segments_in_a_tight_fan() {
     // Five segments from one vertex, 2° apart: several small angles share the vertex.
     let mut b = Builder::default();
@@ -454,8 +506,6 @@ fn very_thin_domain_aspect_1e6() {
 }
 
 #[test]
-#[ignore = "known core bug (issue 2 note): q30 in a 1000:1 sliver exhausts double precision when \
-            splitting; reported as Error::Internal"]
 fn thin_domain_aspect_1e3_q30() {
     let (p, s) = rectangle(1.0, 1e-3);
     let (mesh, _) = assert_mesh(&p, &quality(30.0), &s);

@@ -8,12 +8,14 @@
 
 mod common;
 
+use std::collections::{HashMap, HashSet};
 use std::f64::consts::TAU;
 
 use common::{
     locate, mesh_and_check, polygon_area, quality, regular_polygon, segments_conflict,
     strictly_inside_segment, Builder, Loc, RegionSpec, Spec,
 };
+use idmesh::predicates::incircle;
 use idmesh::{Options, Pslg, Region};
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;
@@ -410,8 +412,6 @@ proptest! {
 
     /// A polygon with one very small angle between two boundary segments.
     #[test]
-    #[ignore = "known core bug (issue 2 note): splits of sub-micron subsegments deep in a 1-10 degree \
-                wedge can leave a subsegment missing; reported as Error::Internal, never as a mesh"]
     fn small_angle_wedges(
         deg in 1.0..10.0f64,
         rot in 0.0..TAU,
@@ -461,8 +461,6 @@ proptest! {
     /// Grid points (full of exactly cocircular quadruples when the spacing is representable)
     /// inside a square whose side segments pass through the boundary grid points.
     #[test]
-    #[ignore = "known core bug (issue 2 note): a split point rounding onto a grid point near a \
-                slanted segment can exhaust precision; reported as Error::Internal"]
     fn grids(
         nx in 2usize..12,
         ny in 2usize..12,
@@ -545,5 +543,172 @@ proptest! {
         spec.area = Some(area);
         let opts = Options { region_attributes: opts_regions, ..options(mode, area) };
         run(&b.pslg, &opts, &spec)?;
+    }
+}
+
+// ----------------------------------------------------------------------------- -Y
+
+/// The failure kinds the common checker reported, from the first line of its message
+/// (`mesh check failed (...): kind: n, kind: n`); `None` when the line has another shape.
+fn failure_kinds(msg: &str) -> Option<Vec<String>> {
+    let first = msg.lines().next()?;
+    let counts = first.split("): ").nth(1)?;
+    counts
+        .split(", ")
+        .map(|kc| kc.split(": ").next().map(str::to_string))
+        .collect()
+}
+
+/// Whether the closed segments `pq` and `rs` share a point (exact).
+fn touches(p: [f64; 2], q: [f64; 2], r: [f64; 2], s: [f64; 2]) -> bool {
+    let o = |a, b, c| idmesh::predicates::orient2d(a, b, c);
+    let between = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| {
+        o(a, b, c) == 0.0
+            && a[0].min(b[0]) <= c[0]
+            && c[0] <= a[0].max(b[0])
+            && a[1].min(b[1]) <= c[1]
+            && c[1] <= a[1].max(b[1])
+    };
+    let (o1, o2, o3, o4) = (o(p, q, r), o(p, q, s), o(r, s, p), o(r, s, q));
+    ((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0))
+        && ((o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0))
+        || between(p, q, r)
+        || between(p, q, s)
+        || between(r, s, p)
+        || between(r, s, q)
+}
+
+/// Checks a mesh made with `no_boundary_steiner`: everything the common checker checks except
+/// the strict empty-circle rule and the quality bounds, then, independently of the mesher:
+/// * no boundary edge (a triangle on one side only) has a Steiner endpoint;
+/// * constrained Delaunay, exactly: every edge that is not a subsegment is locally Delaunay
+///   (equivalent to the global rule for a domain bounded by segments), and no vertex inside a
+///   circumcircle is seen from the triangle's centroid without crossing a subsegment;
+/// * `validate_constrained` agrees.
+fn run_fixed_boundary(pslg: &Pslg, opts: &Options, spec: &Spec) -> Result<(), TestCaseError> {
+    let ctx = || format!("\noptions: {opts:?}\ninput:\n{}", common::poly_text(pslg));
+    let m = idmesh::triangulate(pslg, opts)
+        .map_err(|e| TestCaseError::fail(format!("triangulate failed: {e}{}", ctx())))?;
+    prop_assert!(m.complete, "stopped at the Steiner guard{}", ctx());
+    let loose = Spec {
+        check_quality: false,
+        ..spec.clone()
+    };
+    if let Err(msg) = common::check(&m, pslg, opts, &loose) {
+        let kinds = failure_kinds(&msg);
+        prop_assert!(
+            kinds.is_some_and(|k| k.iter().all(|k| k == "delaunay")),
+            "{msg}{}",
+            ctx()
+        );
+    }
+    let ni = pslg.points.len() as u32;
+    let mut across: HashMap<(u32, u32), (usize, u32)> = HashMap::new();
+    for (t, tri) in m.triangles.iter().enumerate() {
+        for i in 0..3 {
+            across.insert((tri[(i + 1) % 3], tri[(i + 2) % 3]), (t, tri[i]));
+        }
+    }
+    let subseg: HashSet<(u32, u32)> = m
+        .segments
+        .iter()
+        .map(|e| (e[0].min(e[1]), e[0].max(e[1])))
+        .collect();
+    for (&(a, b), &(t, _)) in &across {
+        if !across.contains_key(&(b, a)) {
+            prop_assert!(
+                a < ni && b < ni,
+                "boundary edge {a}-{b} of triangle {t} has a Steiner endpoint{}",
+                ctx()
+            );
+        }
+    }
+    let pt = |v: u32| m.vertices[v as usize];
+    for (&(a, b), &(t, _)) in &across {
+        let Some(&(_, far)) = across.get(&(b, a)) else {
+            continue;
+        };
+        if subseg.contains(&(a.min(b), a.max(b))) {
+            continue;
+        }
+        let [p, q, r] = m.triangles[t].map(pt);
+        prop_assert!(
+            incircle(p, q, r, pt(far)) <= 0.0,
+            "edge {a}-{b} is no subsegment and not locally Delaunay (vertex {far} in the circle of triangle {t}){}",
+            ctx()
+        );
+    }
+    for (t, tri) in m.triangles.iter().enumerate() {
+        let [p, q, r] = tri.map(pt);
+        let c = [(p[0] + q[0] + r[0]) / 3.0, (p[1] + q[1] + r[1]) / 3.0];
+        let o = idmesh::predicates::orient2d;
+        if !(o(p, q, c) > 0.0 && o(q, r, c) > 0.0 && o(r, p, c) > 0.0) {
+            continue;
+        }
+        for v in 0..m.vertices.len() as u32 {
+            if tri.contains(&v) || incircle(p, q, r, pt(v)) <= 0.0 {
+                continue;
+            }
+            let hidden = m
+                .segments
+                .iter()
+                .any(|e| touches(c, pt(v), pt(e[0]), pt(e[1])));
+            prop_assert!(
+                hidden,
+                "vertex {v} in the circle of triangle {t} is seen from its centroid{}",
+                ctx()
+            );
+        }
+    }
+    if let Err(e) = m.validate_constrained() {
+        return Err(TestCaseError::fail(format!(
+            "validate_constrained: {e}{}",
+            ctx()
+        )));
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(config(32))]
+
+    /// -Y on random star domains with holes, chords (interior segments, which -Y may still
+    /// split) and loose points; or with islands (regions) and no chords, since a chord would
+    /// cut a region off its seed.
+    #[test]
+    fn fixed_boundary_star_domains(
+        islands in any::<bool>(),
+        raw_h in domain_raw(false, 8),
+        raw_i in domain_raw(true, 0),
+        mode in mode(),
+    ) {
+        let raw = if islands { raw_i } else { raw_h };
+        let d = build_domain(&raw);
+        prop_assume!(d.is_some());
+        let d = d.unwrap();
+        let opts = Options {
+            no_boundary_steiner: true,
+            region_attributes: !d.pslg.regions.is_empty(),
+            ..options(mode, d.area)
+        };
+        run_fixed_boundary(&d.pslg, &opts, &d.spec)?;
+    }
+
+    /// -Y on small-angle wedges: the sharp corner is all boundary.
+    #[test]
+    fn fixed_boundary_wedges(
+        deg in 1.0..10.0f64,
+        rot in 0.0..TAU,
+        far in prop::collection::vec(0.6..1.5f64, 0..=5),
+        mode in mode(),
+    ) {
+        let poly = wedge(deg, rot, &far);
+        let mut b = Builder::default();
+        b.closed_loop(&poly);
+        prop_assume!(pslg_is_valid(&b.pslg));
+        let area = polygon_area(&poly);
+        let spec = Spec { area: Some(area), outer: Some(poly), ..Spec::default() };
+        let opts = Options { no_boundary_steiner: true, ..options(mode, area) };
+        run_fixed_boundary(&b.pslg, &opts, &spec)?;
     }
 }

@@ -2,7 +2,7 @@
 //! conforming stage, paper Fig. 3 step 2), classification of exterior, holes and regions, then
 //! refinement (step 3) and output.
 
-use super::refine::Refiner;
+use super::refine::{Refiner, SegmentSteiner};
 use super::store::{Cdt, Inserted, Mode, Seg, Start, EXTERIOR, HOLE, NO_REGION};
 use super::{Options, TriMesh, NONE};
 use crate::error::{Error, InputError};
@@ -16,6 +16,21 @@ pub const MAX_MIN_ANGLE: f64 = 34.0;
 const MAX_COORD: f64 = 1e150;
 
 pub(super) fn run(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
+    let policy = if opts.no_boundary_steiner {
+        SegmentSteiner::NotOnBoundary
+    } else {
+        SegmentSteiner::Anywhere
+    };
+    run_with(pslg, opts, policy)
+}
+
+/// [`run`] with an explicit choice of the segments that may be split (`-YY` has no option
+/// of its own yet).
+pub(super) fn run_with(
+    pslg: &Pslg,
+    opts: &Options,
+    policy: SegmentSteiner,
+) -> Result<TriMesh, Error> {
     check_options(opts)?;
     check_input(pslg)?;
     let n = pslg.points.len();
@@ -24,29 +39,41 @@ pub(super) fn run(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
     insert_points(&mut cdt, &pslg.points)?;
     let pieces = segment_pieces(pslg, &mut cdt, opts.split_crossings)?;
     let mut r = Refiner::new(cdt, pslg, opts);
+    r.policy = policy;
+    // Constrained Delaunay first: every segment becomes an edge without Steiner points (only a
+    // segment that cannot be inserted that way is split now).
     r.register_segments(&pieces)?;
     r.drain_splits()?;
     classify(&mut r, pslg, opts)?;
-    // Refinement works on the domain only (Triangle's carving): rounded split points on slanted
-    // segments leave near-flat slivers outside, which the domain never needs to see.
+    // Everything after works on the domain only (Triangle's carving): split points on slanted
+    // segments can round outside, and the exterior never needs to see them.
     r.cdt.carve();
-    r.refine()?;
-    // Cavities stop at segments, so a vertex can encroach a segment across an exterior notch
-    // unseen. Sweep every subsegment against every vertex; split and refine until none is
-    // encroached, which makes the constrained triangulation truly Delaunay.
+    r.fix_segments();
+    // Conforming stage, then refinement. Cavities stop at segments, so a vertex can encroach a
+    // segment across a wall or an exterior notch unseen: every subsegment is swept against
+    // every vertex and split until none is encroached, which makes the constrained
+    // triangulation truly Delaunay (except at fixed segments, under -Y).
     let mut passes = 0;
-    while r.sweep_encroached() > 0 {
-        passes += 1;
-        if passes > 64 {
-            return Err(Error::Internal("encroachment sweep did not settle".into()));
+    loop {
+        while r.sweep_encroached() > 0 {
+            passes += 1;
+            if passes > 64 {
+                return Err(Error::Internal("encroachment sweep did not settle".into()));
+            }
+            r.drain_splits()?;
         }
-        r.drain_splits()?;
-        r.refine()?;
+        if !r.refine()? {
+            break;
+        }
     }
     let mesh = output(&r, n, pslg, opts)?;
     // Never hand back a broken mesh as a success: the structural invariants are cheap to
-    // check; the exact empty-circle check runs too in debug builds and in `validate()`.
-    let check = if cfg!(debug_assertions) {
+    // check; the exact empty-circle check runs too in debug builds and in `validate()`. With
+    // fixed segments the mesh is only constrained Delaunay; its local test is cheap, so it
+    // always runs.
+    let check = if r.policy != SegmentSteiner::Anywhere {
+        super::validate::validate_constrained(&mesh)
+    } else if cfg!(debug_assertions) {
         mesh.validate()
     } else {
         super::validate::validate_structure(&mesh, false)
@@ -70,11 +97,6 @@ fn check_options(o: &Options) -> Result<(), Error> {
                 "maximum area {a} must be positive and finite"
             )));
         }
-    }
-    if o.no_boundary_steiner {
-        return Err(Error::Unsupported(
-            "forbidding boundary Steiner points (-Y) is not implemented yet".into(),
-        ));
     }
     Ok(())
 }
@@ -384,8 +406,26 @@ fn segment_pieces(p: &Pslg, cdt: &mut Cdt, split_crossings: bool) -> Result<Vec<
             }
         }
     }
-    // Crossing points become new vertices splitting both segments.
+    // Crossing points become new vertices splitting both segments, unless the two cross
+    // exactly at an input point, which splits both already (a computed crossing point would
+    // only land next to it).
+    let mut on_seg_sorted: Vec<(u32, u32)> = on_seg.iter().map(|&(s, _, i)| (s, i)).collect();
+    on_seg_sorted.sort_unstable();
+    let points_on = |s: usize| {
+        let lo = on_seg_sorted.partition_point(|e| (e.0 as usize) < s);
+        let hi = on_seg_sorted.partition_point(|e| (e.0 as usize) <= s);
+        &on_seg_sorted[lo..hi]
+    };
+    // Crossing vertices made so far on each segment: three segments through one point (exact
+    // in the reals) give three computed crossings a few ulps apart, which must be one vertex.
+    let mut made: std::collections::HashMap<usize, Vec<u32>> = std::collections::HashMap::new();
     for &(s, t) in &crossings {
+        if points_on(s)
+            .iter()
+            .any(|&(_, i)| points_on(t).iter().any(|&(_, j)| i == j))
+        {
+            continue;
+        }
         let [a, b] = p.segments[s];
         let [c, d] = p.segments[t];
         let (pa, pb, pc, pd) = (
@@ -399,19 +439,38 @@ fn segment_pieces(p: &Pslg, cdt: &mut Cdt, split_crossings: bool) -> Result<Vec<
         let den = e[0] * f[1] - e[1] * f[0];
         let u = ((pc[0] - pa[0]) * f[1] - (pc[1] - pa[1]) * f[0]) / den;
         let x = [pa[0] + e[0] * u, pa[1] + e[1] * u];
-        let v = match cdt.insert(x, Start::Walk(cdt.hint), Mode::Force, NONE, None) {
-            Inserted::Yes(v) | Inserted::Duplicate(v) => v,
-            other => {
-                return Err(Error::Internal(format!(
-                    "inserting the crossing of segments {s} and {t}: {other:?}"
-                )))
-            }
+        let near = |y: [f64; 2]| {
+            let mag = x[0].abs().max(x[1].abs()).max(y[0].abs()).max(y[1].abs());
+            (x[0] - y[0]).abs().max((x[1] - y[1]).abs()) <= 4.0 * f64::EPSILON * mag
         };
+        let known = [s, t]
+            .iter()
+            .filter_map(|k| made.get(k))
+            .flatten()
+            .copied()
+            .chain([a, b, c, d])
+            .find(|&w| near(cdt.pts[w as usize]));
+        let v = match known {
+            Some(w) => w,
+            None => match cdt.insert(x, Start::Walk(cdt.hint), Mode::Force, NONE, None) {
+                Inserted::Yes(v) | Inserted::Duplicate(v) => v,
+                other => {
+                    return Err(Error::Internal(format!(
+                        "inserting the crossing of segments {s} and {t}: {other:?}"
+                    )))
+                }
+            },
+        };
+        let pv = cdt.pts[v as usize];
         for (seg, q) in [(s, pa), (t, pc)] {
             let [r0, r1] = p.segments[seg];
             let (q0, q1) = (pts[r0 as usize], pts[r1 as usize]);
             let k = if q0[0] != q1[0] { 0 } else { 1 };
-            on_seg.push((seg as u32, (x[k] - q[k]).abs(), v));
+            on_seg.push((seg as u32, (pv[k] - q[k]).abs(), v));
+            let list = made.entry(seg).or_default();
+            if !list.contains(&v) {
+                list.push(v);
+            }
         }
     }
     on_seg.sort_by(|x, y| x.0.cmp(&y.0).then(x.1.total_cmp(&y.1)));
@@ -523,6 +582,7 @@ fn classify(r: &mut Refiner, pslg: &Pslg, opts: &Options) -> Result<(), Error> {
                         b,
                         input: NONE,
                         marker: 1,
+                        fixed: false,
                     });
                     cdt.seg_queued.push(false);
                     cdt.set_seg(h, s);
@@ -533,17 +593,6 @@ fn classify(r: &mut Refiner, pslg: &Pslg, opts: &Options) -> Result<(), Error> {
         } else {
             cdt.treg[t as usize] = NO_REGION;
         }
-    }
-    if hull_mode && r.will_refine() {
-        // Hull edges are Delaunay edges whatever encroaches them; but refinement needs them
-        // unencroached (Ruppert) so that no Steiner point lands outside the hull.
-        let nseg = r.cdt.segs.len();
-        for s in 0..nseg as u32 {
-            if r.cdt.segs[s as usize].input == NONE {
-                r.check_encroached(s);
-            }
-        }
-        r.drain_splits()?;
     }
     let cdt = &mut r.cdt;
     flood(cdt, &mut stack, EXTERIOR);
@@ -679,8 +728,11 @@ fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriMesh,
     }
     let mut segments = Vec::new();
     let mut segment_markers = Vec::new();
+    // Two input segments that meet within rounding (a vertex of one lies on the other up to
+    // an ulp) can share a subsegment: list each edge once.
+    let mut listed = std::collections::HashSet::with_capacity(cdt.segs.len());
     for s in &cdt.segs {
-        if s.a == NONE {
+        if s.a == NONE || !listed.insert((s.a.min(s.b), s.a.max(s.b))) {
             continue;
         }
         let (a, b) = (vmap[s.a as usize], vmap[s.b as usize]);

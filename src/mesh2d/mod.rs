@@ -2,13 +2,18 @@
 //! refinement to a minimum angle and maximum area.
 //!
 //! Pipeline: validate the input; insert every input point (Bowyer–Watson, BRIO/Hilbert order,
-//! walking point location); recover segments lazily by splitting (paper Fig. 2, `Force`);
-//! classify exterior, holes and regions by flooding up to segments; then eliminate skinny and
-//! oversized triangles (paper Fig. 4, `Provisional` circumcenter / off-center insertion).
+//! walking point location); insert every segment as a constrained edge (no Steiner point);
+//! classify exterior, holes and regions by flooding up to segments and carve them away; split
+//! encroached segments until the constrained triangulation is Delaunay (paper Fig. 2, `Force`);
+//! then eliminate skinny and oversized triangles (paper Fig. 4, `Provisional` circumcenter /
+//! off-center insertion). With `no_boundary_steiner` (Triangle's `-Y`) boundary segments are
+//! never split and the result is constrained Delaunay.
 
 mod build;
-mod grid;
+mod flip;
+mod kdtree;
 mod output;
+mod recover;
 mod refine;
 mod store;
 mod validate;
@@ -56,16 +61,26 @@ pub struct Options {
     /// always finish (so segments stay conforming), which can add a few points beyond the cap.
     /// Default: `None` (no cap other than an internal safety cap of 2^31 vertices).
     pub max_steiner: Option<u64>,
-    /// Forbid Steiner points on boundary segments (Triangle's `-Y`). The result is then
-    /// constrained Delaunay, not conforming Delaunay. Not implemented yet: setting it gives
-    /// [`Error::Unsupported`]. Default: `false`.
+    /// Forbid Steiner points on boundary segments (Triangle's `-Y`): segments with the domain
+    /// on one side only (outer boundary, hole boundaries, the hull with `convex_hull`) stay
+    /// single edges. Interior segments are still split where encroached. The result is then
+    /// constrained Delaunay, not conforming Delaunay: check it with
+    /// [`TriMesh::validate_constrained`].
+    ///
+    /// As in Triangle, a refinement point that would encroach a boundary segment (or fall
+    /// beyond one) is rejected and its triangle is left as it is: triangles near boundary
+    /// segments, typically those with a boundary edge whose circumcenter lies outside or near
+    /// the boundary, may keep angles below `min_angle` and areas above the bounds. A domain all
+    /// of whose triangles touch the boundary may get no Steiner point at all. Default: `false`.
     pub no_boundary_steiner: bool,
     /// Use off-centers (Üngör) instead of circumcenters for skinny triangles: fewer triangles for
     /// the same angle bound. Default: `true`.
     pub off_centers: bool,
-    /// Resolve crossing segments by inserting their intersection point instead of reporting
-    /// [`crate::InputError::CrossingSegments`]. Not implemented yet: setting it gives
-    /// [`Error::Unsupported`]. Default: `false`.
+    /// Resolve crossing segments by inserting their intersection point (rounded to floating
+    /// point, as Triangle does) instead of reporting [`crate::InputError::CrossingSegments`].
+    /// Segments that cross at an input point are split there; crossings of several segments
+    /// through one point that round a few ulps apart become one vertex. Collinear overlaps
+    /// are still errors. Default: `false`.
     pub split_crossings: bool,
     /// A user sizing test (Triangle's `-u`); see [`SizingFn`]. Default: `None`.
     pub sizing: Option<SizingFn>,

@@ -85,8 +85,21 @@ impl TriMesh {
     /// Checks the mesh invariants exactly: index ranges, counter-clockwise orientation,
     /// neighbour symmetry, empty circumcircles (against every vertex), and that every
     /// subsegment is a mesh edge. Returns a message naming the first violation.
+    ///
+    /// This is the conforming Delaunay rule of the default options. A mesh made with
+    /// `Options::no_boundary_steiner` is only constrained Delaunay: check it with
+    /// [`TriMesh::validate_constrained`].
     pub fn validate(&self) -> Result<(), String> {
         super::validate::validate(self)
+    }
+
+    /// As [`TriMesh::validate`], but with the constrained empty-circle rule (the guarantee of
+    /// meshes made with `Options::no_boundary_steiner`): a vertex inside a triangle's
+    /// circumcircle is a violation only when it is visible from the triangle's interior, not
+    /// hidden behind a subsegment. Checked exactly in its equivalent local form: every edge
+    /// that is not a subsegment is locally Delaunay.
+    pub fn validate_constrained(&self) -> Result<(), String> {
+        super::validate::validate_constrained(self)
     }
 }
 

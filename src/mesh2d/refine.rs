@@ -1,17 +1,33 @@
-//! Segment splitting (the paper's queue `P` of Force'd points, Fig. 2 steps 6–8) and the
-//! elimination of skinny and oversized triangles (`rm-tri`, Fig. 4).
+//! Segment recovery and splitting (the paper's queue `P` of Force'd points, Fig. 2 steps
+//! 6–8) and the elimination of skinny and oversized triangles (`rm-tri`, Fig. 4).
 
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, VecDeque};
 
 use super::build::{segment_marker, Piece};
-use super::grid::PointGrid;
-use super::store::{Cdt, Inserted, Mode, Seg, SegId, Start, TriId, EXTERIOR, HOLE, NO_REGION};
+use super::kdtree::PointTree;
+use super::recover::Recovery;
+use super::store::{
+    Cdt, Inserted, Mode, Seg, SegId, Start, TriId, VertexId, EXTERIOR, HOLE, NO_REGION,
+};
 use super::{Options, NONE};
 use crate::error::Error;
 use crate::geometry::{area2, dist2, min_angle_sin2, steiner_point};
 use crate::input::Pslg;
-use crate::predicates::encroaches;
+use crate::predicates::{encroaches, orient2d};
+
+/// Which segments may receive Steiner points (Triangle's `-Y` and `-YY`).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(super) enum SegmentSteiner {
+    /// Any segment may be split (conforming Delaunay output).
+    Anywhere,
+    /// Segments with the domain on one side only are never split (`-Y`).
+    NotOnBoundary,
+    /// No segment is ever split (`-YY`). Only reachable through `build::run_with` until
+    /// `Options` has a switch for it.
+    #[cfg_attr(not(test), allow(dead_code))]
+    Nowhere,
+}
 
 /// Refinement state: the triangulation plus the criteria and the queue of bad triangles.
 pub(super) struct Refiner<'a> {
@@ -27,7 +43,7 @@ pub(super) struct Refiner<'a> {
     apex: Vec<bool>,
     /// Crossing points (from `split_crossings`) lying on each input segment: like shared
     /// endpoints, they are corners that segments radiate from.
-    crossing_apexes: std::collections::HashMap<u32, Vec<u32>>,
+    inner_corners: std::collections::HashMap<u32, Vec<u32>>,
     sin2_min: f64,
     off_k: Option<f64>,
     max_area: f64,
@@ -39,6 +55,13 @@ pub(super) struct Refiner<'a> {
     /// skinny queue goes first, so quality cascades settle before the mesh grows further.
     size_queue: VecDeque<(TriId, [u32; 3])>,
     refining: bool,
+    /// Which segments may be split.
+    pub policy: SegmentSteiner,
+    /// Segments waiting for recovery or an encroachment check (`settle`).
+    settle_work: Vec<SegId>,
+    /// Whether encroached segments are split: not before carving, so that no split point
+    /// ever sees the exterior (set by `fix_segments`).
+    conforming: bool,
 }
 
 impl<'a> Refiner<'a> {
@@ -70,7 +93,7 @@ impl<'a> Refiner<'a> {
             opts,
             n_input: n,
             apex: degree.iter().map(|&d| d >= 2).collect(),
-            crossing_apexes: std::collections::HashMap::new(),
+            inner_corners: std::collections::HashMap::new(),
             sin2_min,
             off_k,
             max_area: opts.max_area.unwrap_or(f64::INFINITY),
@@ -78,71 +101,195 @@ impl<'a> Refiner<'a> {
             queue: BinaryHeap::new(),
             size_queue: VecDeque::new(),
             refining: false,
+            policy: SegmentSteiner::Anywhere,
+            settle_work: Vec::new(),
+            conforming: false,
         }
     }
 
-    /// Adds the input segment pieces; present ones become walls, missing or encroached ones are
-    /// queued for splitting (paper Fig. 2 step 7 for the input).
+    /// Adds the input segment pieces and makes each an edge: present ones become walls,
+    /// missing ones are inserted as constrained edges (no Steiner point). Splitting for
+    /// conformity comes later, once the exterior is carved away (`sweep_encroached`).
     pub fn register_segments(&mut self, pieces: &[Piece]) -> Result<(), Error> {
+        // An input point inside a segment is a corner too when another segment ends there.
+        let mut degree = vec![0u8; self.n_input];
+        for pc in pieces {
+            for v in [pc.a, pc.b] {
+                if let Some(d) = degree.get_mut(v as usize) {
+                    *d = d.saturating_add(1);
+                }
+            }
+        }
+        for (v, d) in degree.iter().enumerate() {
+            self.apex[v] |= *d >= 3;
+        }
         for pc in pieces {
             for v in [pc.a, pc.b] {
                 if v as usize > self.n_input {
-                    let list = self.crossing_apexes.entry(pc.input).or_default();
+                    let list = self.inner_corners.entry(pc.input).or_default();
                     if !list.contains(&v) {
                         list.push(v);
                     }
                 }
             }
-            let s = self.cdt.segs.len() as SegId;
             let marker = segment_marker(self.pslg, pc.input as usize);
             self.cdt.segs.push(Seg {
                 a: pc.a,
                 b: pc.b,
                 input: pc.input,
                 marker,
+                fixed: false,
             });
             self.cdt.seg_queued.push(false);
-            if let Some(h) = self.cdt.find_edge(pc.a, pc.b) {
-                self.cdt.set_seg(h, s);
-            }
         }
         for s in 0..self.cdt.segs.len() as SegId {
-            self.check_encroached(s);
+            self.settle(s)?;
         }
         Ok(())
     }
 
-    /// Queues segment `s` when it is missing from the mesh or a vertex of an adjacent triangle
-    /// lies inside its diametral circle (by Lemma 3.1 that is the only place to look).
-    pub fn check_encroached(&mut self, s: SegId) {
-        let Seg { a, b, .. } = self.cdt.segs[s as usize];
-        match self.cdt.find_edge(a, b) {
-            None => self.cdt.queue_split(s),
-            Some(h) => {
-                if self.cdt.seg_at(h) != s {
-                    self.cdt.set_seg(h, s);
-                }
-                let (pa, pb) = (self.cdt.pts[a as usize], self.cdt.pts[b as usize]);
-                for e in [h, self.cdt.twin(h)] {
-                    if e == NONE {
-                        continue;
-                    }
-                    let c = self.cdt.apex(e);
-                    if c != self.cdt.ghost && encroaches(pa, pb, self.cdt.pts[c as usize]) {
-                        self.cdt.queue_split(s);
-                        return;
-                    }
-                }
+    /// Marks the segments no Steiner point may split, once carving has told boundary from
+    /// interior: with `-Y` those with a triangle on one side only, with `-YY` all of them.
+    /// From here on, encroached segments are split.
+    pub fn fix_segments(&mut self) {
+        self.conforming = true;
+        for s in 0..self.cdt.segs.len() {
+            let Seg { a, b, .. } = self.cdt.segs[s];
+            if a == NONE {
+                continue;
             }
+            let fixed = match self.policy {
+                SegmentSteiner::Anywhere => false,
+                SegmentSteiner::Nowhere => true,
+                SegmentSteiner::NotOnBoundary => self
+                    .cdt
+                    .find_edge(a, b)
+                    .is_some_and(|h| self.cdt.twin(h) == NONE),
+            };
+            self.cdt.segs[s].fixed = fixed;
         }
     }
 
+    /// Makes segment `s` an edge again if it is missing (constrained insertion, splitting it
+    /// at any vertex lying on it), then queues it for splitting when a vertex of an adjacent
+    /// triangle encroaches it (by Lemma 3.1 the only place to look in a Delaunay mesh; the
+    /// sweep finds the rest). Pieces made along the way are settled the same way.
+    pub fn settle(&mut self, s: SegId) -> Result<(), Error> {
+        let mut work = std::mem::take(&mut self.settle_work);
+        work.clear();
+        work.push(s);
+        let mut budget = 4 * self.cdt.pts.len() + 64;
+        let mut result = Ok(());
+        while let Some(s) = work.pop() {
+            budget -= 1;
+            if budget == 0 {
+                result = Err(Error::Internal(
+                    "segment recovery did not settle within its budget".into(),
+                ));
+                break;
+            }
+            let Seg { a, b, fixed, .. } = self.cdt.segs[s as usize];
+            if a == NONE {
+                continue;
+            }
+            let h = match self.cdt.insert_segment(s) {
+                Recovery::Edge(h) => {
+                    self.queue_new_triangles();
+                    h
+                }
+                Recovery::Through(v) => {
+                    let s2 = self.split_at_vertex(s, v);
+                    work.push(s);
+                    work.push(s2);
+                    continue;
+                }
+                Recovery::Blocked(_) | Recovery::Failed => {
+                    if self.policy != SegmentSteiner::Anywhere {
+                        let (pa, pb) = (self.cdt.pts[a as usize], self.cdt.pts[b as usize]);
+                        result = Err(Error::Internal(format!(
+                            "segment ({pa:?}, {pb:?}) cannot be recovered without Steiner \
+                             points"
+                        )));
+                        break;
+                    }
+                    // Fall back to recovery by splitting (paper Fig. 2, step 7).
+                    self.cdt.queue_split(s);
+                    continue;
+                }
+            };
+            if fixed || !self.conforming {
+                continue;
+            }
+            let (pa, pb) = (self.cdt.pts[a as usize], self.cdt.pts[b as usize]);
+            for e in [h, self.cdt.twin(h)] {
+                if e == NONE {
+                    continue;
+                }
+                let c = self.cdt.apex(e);
+                if c != self.cdt.ghost && encroaches(pa, pb, self.cdt.pts[c as usize]) {
+                    self.cdt.queue_split(s);
+                    break;
+                }
+            }
+        }
+        self.settle_work = work;
+        result
+    }
+
+    /// Whether vertex `c`, which encroaches segment `s` (so it projects strictly inside it),
+    /// lies within four units in the last place of the coordinates from its line: then no
+    /// split point could separate it from the segment, and it becomes a vertex of it. That
+    /// includes a split point of another input segment running along this one within
+    /// rounding (the two then share the subsegments there) and the crossing point of two
+    /// segments that a third one passes through up to rounding. The output checks allow
+    /// vertices of a slanted segment this far off its line (split points are rounded too).
+    fn within_rounding_of(&self, s: SegId, c: VertexId) -> bool {
+        let Seg { a, b, .. } = self.cdt.segs[s as usize];
+        let (pa, pb, pc) = (
+            self.cdt.pts[a as usize],
+            self.cdt.pts[b as usize],
+            self.cdt.pts[c as usize],
+        );
+        let mag = [pa[0], pa[1], pb[0], pb[1], pc[0], pc[1]]
+            .iter()
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+        let o = orient2d(pa, pb, pc).abs();
+        o <= 4.0 * f64::EPSILON * mag * dist2(pa, pb).sqrt()
+    }
+
+    /// Splits segment `s` at the existing vertex `v` (lying on it, exactly or up to rounding):
+    /// `s` keeps the first half, the returned new segment is the second. The halves are not
+    /// recovered here.
+    fn split_at_vertex(&mut self, s: SegId, v: VertexId) -> SegId {
+        let seg = self.cdt.segs[s as usize];
+        if let Some(h) = self.cdt.find_edge(seg.a, seg.b) {
+            if self.cdt.seg_at(h) == s {
+                // `v` lies beside the edge (within rounding): without its wall the edge and
+                // the ones behind it may no longer be locally Delaunay.
+                self.cdt.set_seg(h, NONE);
+                self.cdt.legalize(h);
+                self.queue_new_triangles();
+            }
+        }
+        if (v as usize) > self.n_input && self.cdt.vseg[v as usize] == NONE {
+            let crossing = self.inner_corners.values().any(|l| l.contains(&v));
+            if !crossing {
+                self.cdt.vseg[v as usize] = seg.input;
+            }
+        }
+        self.cdt.segs[s as usize].b = v;
+        let s2 = self.cdt.segs.len() as SegId;
+        self.cdt.segs.push(Seg { a: v, ..seg });
+        self.cdt.seg_queued.push(false);
+        s2
+    }
+
     /// Queues every subsegment that some vertex (used by the domain, or an input point)
-    /// encroaches; returns how many. A uniform grid over the vertices keeps it near-linear.
+    /// encroaches; returns how many. A k-d tree over the vertices keeps it near-linear.
     pub fn sweep_encroached(&mut self) -> usize {
         let refining = self.will_refine();
         let cdt = &self.cdt;
-        let live = |s: &Seg| s.a != NONE && (refining || s.input != NONE);
+        let live = |s: &Seg| s.a != NONE && !s.fixed && (refining || s.input != NONE);
         if !cdt.segs.iter().any(live) {
             return 0;
         }
@@ -154,7 +301,7 @@ impl<'a> Refiner<'a> {
         if used.is_empty() {
             return 0;
         }
-        let grid = PointGrid::new(&cdt.pts, &used);
+        let tree = PointTree::new(&cdt.pts, &used);
         let mut hits = Vec::new();
         for (s, seg) in cdt.segs.iter().enumerate() {
             // Retired segments are gone; hull edges only bound the domain when refining.
@@ -163,9 +310,9 @@ impl<'a> Refiner<'a> {
             }
             let (pa, pb) = (cdt.pts[seg.a as usize], cdt.pts[seg.b as usize]);
             let c = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
-            // The float radius only picks grid cells; it is padded, the test itself is exact.
+            // The float radius only picks candidates; it is padded, the test itself is exact.
             let r = 0.5 * dist2(pa, pb).sqrt() * (1.0 + 1e-9) + 1e-300;
-            let clear = grid.for_each_near(c, r, |v| {
+            let clear = tree.for_each_near(c, r, |v| {
                 v == seg.a || v == seg.b || !encroaches(pa, pb, cdt.pts[v as usize])
             });
             if !clear {
@@ -217,13 +364,31 @@ impl<'a> Refiner<'a> {
 
     fn split_segment(&mut self, s: SegId) -> Result<(), Error> {
         let Seg {
-            a,
-            b,
-            input,
-            marker,
+            a, b, input, fixed, ..
         } = self.cdt.segs[s as usize];
-        let m = self.split_point(a, b);
+        if a == NONE || fixed {
+            return Ok(());
+        }
         let (pa, pb) = (self.cdt.pts[a as usize], self.cdt.pts[b as usize]);
+        if let Some(h) = self.cdt.find_edge(a, b) {
+            for e in [h, self.cdt.twin(h)] {
+                if e == NONE {
+                    continue;
+                }
+                let c = self.cdt.apex(e);
+                if c != self.cdt.ghost
+                    && encroaches(pa, pb, self.cdt.pts[c as usize])
+                    && self.within_rounding_of(s, c)
+                {
+                    // No split point could separate `c` from the segment in floating point:
+                    // `c` is on it, up to rounding (as split points on slanted segments are).
+                    let s2 = self.split_at_vertex(s, c);
+                    self.settle(s)?;
+                    return self.settle(s2);
+                }
+            }
+        }
+        let m = self.split_point(a, b);
         if m == pa || m == pb {
             return Err(Error::Internal(format!(
                 "segment ({pa:?}, {pb:?}) is too short to split in double precision"
@@ -247,19 +412,10 @@ impl<'a> Refiner<'a> {
                 )))
             }
         };
-        self.cdt.segs[s as usize].b = mv;
-        let s2 = self.cdt.segs.len() as SegId;
-        self.cdt.segs.push(Seg {
-            a: mv,
-            b,
-            input,
-            marker,
-        });
-        self.cdt.seg_queued.push(false);
         self.queue_new_triangles();
-        self.check_encroached(s);
-        self.check_encroached(s2);
-        Ok(())
+        let s2 = self.split_at_vertex(s, mv);
+        self.settle(s)?;
+        self.settle(s2)
     }
 
     fn queue_new_triangles(&mut self) {
@@ -319,8 +475,10 @@ impl<'a> Refiner<'a> {
     }
 
     /// Small input angles (paper §6 "grooming"): a skinny triangle is left alone when its
-    /// smallest angle lies between two segments (the isosceles triangles that concentric
-    /// shells make at a sharp input corner), or when its shortest edge joins two points on
+    /// smallest angle lies between two segments and its shortest edge has a split point at
+    /// one end at least (the isosceles triangles that concentric shells make at a sharp input
+    /// corner; a triangle spanning the whole corner still gets split), or when its shortest
+    /// edge joins two points on
     /// different segments sharing an endpoint, at equal distance from it (Miller, Pav and
     /// Walkington), since splitting those would only cascade toward the corner.
     fn exempt(&self, t: TriId) -> bool {
@@ -336,18 +494,20 @@ impl<'a> Refiner<'a> {
             2
         };
         let ts = self.cdt.ts[t as usize];
-        // The edges at vertex k are edges k+1 and k+2.
-        if ts[(k + 1) % 3] != NONE && ts[(k + 2) % 3] != NONE {
+        let (x, y) = (v[(k + 1) % 3], v[(k + 2) % 3]);
+        // The edges at vertex k are edges k+1 and k+2. A triangle spanning the corner between
+        // two whole input segments is split all the same: the shells have not reached it.
+        let steiner = |u: u32| u as usize > self.n_input;
+        if ts[(k + 1) % 3] != NONE && ts[(k + 2) % 3] != NONE && (steiner(x) || steiner(y)) {
             return true;
         }
-        let (x, y) = (v[(k + 1) % 3], v[(k + 2) % 3]);
         let (sx, sy) = (self.cdt.vseg[x as usize], self.cdt.vseg[y as usize]);
         if sx == NONE || sy == NONE || sx == sy {
             return false;
         }
         let corners = |s: u32| {
             let e = self.pslg.segments[s as usize];
-            let extra = self.crossing_apexes.get(&s).map_or(&[][..], |v| &v[..]);
+            let extra = self.inner_corners.get(&s).map_or(&[][..], |v| &v[..]);
             e.into_iter().chain(extra.iter().copied())
         };
         for c in corners(sx) {
@@ -363,9 +523,6 @@ impl<'a> Refiner<'a> {
         false
     }
 
-    /// Eliminates bad triangles (paper Fig. 4): insert each one's circumcenter (or off-center)
-    /// provisionally; if it encroaches a segment, split that segment instead (Force) and keep
-    /// the triangle queued.
     /// Whether any refinement criterion is set.
     pub fn will_refine(&self) -> bool {
         let o = self.opts;
@@ -375,11 +532,17 @@ impl<'a> Refiner<'a> {
             || (o.region_max_area && self.region_area.iter().any(|a| a.is_finite()))
     }
 
-    pub fn refine(&mut self) -> Result<(), Error> {
+    /// Eliminates bad triangles (paper Fig. 4): insert each one's circumcenter (or off-center)
+    /// provisionally; if it encroaches a segment, split that segment instead (Force) and keep
+    /// the triangle queued. If it encroaches only fixed segments (`-Y`), or lies beyond one,
+    /// the point is rejected and the triangle dropped from the queue, as Triangle does: such
+    /// triangles keep their bad angle or size. Returns whether any vertex was added.
+    pub fn refine(&mut self) -> Result<bool, Error> {
         let o = self.opts;
         if !self.will_refine() {
-            return Ok(());
+            return Ok(false);
         }
+        let before = self.cdt.pts.len();
         self.refining = true;
         for t in 0..self.cdt.num_slots() as TriId {
             if self.cdt.alive(t) && self.is_bad(t) {
@@ -414,6 +577,9 @@ impl<'a> Refiner<'a> {
                 .insert(c, Start::Walk(t), Mode::Provisional, NONE, None)
             {
                 Inserted::Yes(_) => self.queue_new_triangles(),
+                // Triangle's -Y: a point encroaching a fixed segment is rejected and the
+                // triangle stays as it is.
+                Inserted::Encroached(s) if self.cdt.segs[s as usize].fixed => {}
                 Inserted::Encroached(s) => {
                     self.cdt.queue_split(s);
                     self.drain_splits()?;
@@ -432,6 +598,6 @@ impl<'a> Refiner<'a> {
             }
         }
         self.refining = false;
-        Ok(())
+        Ok(self.cdt.pts.len() > before)
     }
 }

@@ -74,6 +74,9 @@ pub struct Seg {
     pub input: u32,
     /// The output marker.
     pub marker: i32,
+    /// No Steiner point may split it (Triangle's `-Y` on boundary segments, `-YY` on all):
+    /// it stays one edge, encroached or not.
+    pub fixed: bool,
 }
 
 /// The triangulation, its segments and reusable scratch space.
@@ -94,7 +97,7 @@ pub struct Cdt {
     pub ts: Vec<[SegId; 3]>,
     /// Region label per triangle (see [`EXTERIOR`], [`HOLE`], [`NO_REGION`]).
     pub treg: Vec<u32>,
-    free: Vec<TriId>,
+    pub(super) free: Vec<TriId>,
     /// Subsegments.
     pub segs: Vec<Seg>,
     /// Segments waiting to be split (paper's queue `P` of Force'd points).
@@ -103,24 +106,28 @@ pub struct Cdt {
     pub seg_queued: Vec<bool>,
     /// Triangles created by the last successful insertion.
     pub new_tris: Vec<TriId>,
-    stamp: Vec<u32>,
-    epoch: u32,
+    pub(super) stamp: Vec<u32>,
+    pub(super) epoch: u32,
     cavity: Vec<TriId>,
     boundary: Vec<u32>,
     breg: Vec<u32>,
     bflat: Vec<bool>,
     /// Triangles made flat or inverted by rounding (see `same_input_segment`).
-    tflat: Vec<bool>,
+    pub(super) tflat: Vec<bool>,
     bedge: Vec<(VertexId, VertexId, SegId)>,
     /// Endpoints of each input segment (to recognise points on one input segment).
     pub inseg_ends: Vec<[VertexId; 2]>,
     vmark: Vec<TriId>,
+    /// Whether the exterior and holes have been carved away.
+    pub carved: bool,
+    /// Scratch space of constrained segment insertion (`recover.rs`).
+    pub(super) rec: super::recover::Scratch,
     /// The last triangle created (a walking hint).
     pub hint: TriId,
 }
 
 #[inline]
-fn next(i: usize) -> usize {
+pub(super) fn next(i: usize) -> usize {
     if i == 2 {
         0
     } else {
@@ -129,7 +136,7 @@ fn next(i: usize) -> usize {
 }
 
 #[inline]
-fn prev(i: usize) -> usize {
+pub(super) fn prev(i: usize) -> usize {
     if i == 0 {
         2
     } else {
@@ -169,6 +176,8 @@ impl Cdt {
             bedge: Vec::new(),
             inseg_ends: Vec::new(),
             vmark: vec![NONE; n + 1],
+            carved: false,
+            rec: Default::default(),
             hint: 0,
         }
     }
@@ -193,11 +202,11 @@ impl Cdt {
     }
 
     #[inline]
-    fn p(&self, v: VertexId) -> [f64; 2] {
+    pub(super) fn p(&self, v: VertexId) -> [f64; 2] {
         self.pts[v as usize]
     }
 
-    fn alloc(&mut self) -> TriId {
+    pub(super) fn alloc(&mut self) -> TriId {
         if let Some(t) = self.free.pop() {
             return t;
         }
@@ -250,7 +259,7 @@ impl Cdt {
     }
 
     #[inline]
-    fn link(&mut self, h1: u32, h2: u32) {
+    pub(super) fn link(&mut self, h1: u32, h2: u32) {
         self.tn[(h1 / 3) as usize][(h1 % 3) as usize] = h2;
         self.tn[(h2 / 3) as usize][(h2 % 3) as usize] = h1;
     }
@@ -294,6 +303,8 @@ impl Cdt {
     /// `seg` by construction. Split points are rounded, so three such points can be flat or
     /// even turn the wrong way by an ulp; the triangles they make only ever sit in the empty
     /// exterior or a hole (a near-flat triangle elsewhere has vertices in its circumcircle).
+    /// Only splits before carving (the fallback when a segment cannot be inserted as a
+    /// constrained edge) can make them; after carving such a point is refused instead.
     fn same_input_segment(&self, seg: u32, q: VertexId, r: VertexId) -> bool {
         if seg == NONE {
             return false;
@@ -306,6 +317,7 @@ impl Cdt {
     /// Deletes every triangle whose region is [`EXTERIOR`] or [`HOLE`] (Triangle's carving):
     /// refinement then only ever sees the domain, bounded by segments with no neighbour.
     pub fn carve(&mut self) {
+        self.carved = true;
         // Segments with no domain triangle on either side (dangling in a hole or outside)
         // leave the mesh with the exterior: retire them (endpoint `a` set to `NONE`).
         for s in 0..self.segs.len() {
@@ -513,9 +525,9 @@ impl Cdt {
         ghost_hit
     }
 
-    /// Queues segment `s` for splitting (once).
+    /// Queues segment `s` for splitting (once); fixed segments are never split.
     pub fn queue_split(&mut self, s: SegId) {
-        if !self.seg_queued[s as usize] {
+        if !self.seg_queued[s as usize] && !self.segs[s as usize].fixed {
             self.seg_queued[s as usize] = true;
             self.split_queue.push(s);
         }
@@ -611,6 +623,9 @@ impl Cdt {
             NONE
         };
         // Grow the cavity by depth-first search over the dual graph, stopping at walls.
+        // A Provisional point encroaching only fixed segments is rejected, but one that also
+        // encroaches a splittable segment reports that one, so it gets split.
+        let mut fixed_hit = NONE;
         let mut k = 0;
         while k < self.cavity.len() {
             let t = self.cavity[k];
@@ -637,6 +652,7 @@ impl Cdt {
                     let (a, b) = self.edge_ends(h);
                     if s != NONE && encroaches(self.p(a), self.p(b), p) {
                         match mode {
+                            Mode::Provisional if self.segs[s as usize].fixed => fixed_hit = s,
                             Mode::Provisional => return Inserted::Encroached(s),
                             Mode::Force => self.queue_split(s),
                         }
@@ -662,15 +678,27 @@ impl Cdt {
                 }
             }
         }
+        if fixed_hit != NONE {
+            return Inserted::Encroached(fixed_hit);
+        }
         // Every new finite triangle must be counter-clockwise; a point exactly on a wall (not
         // the segment being split) would make a flat one.
         self.bflat.clear();
+        // A split point (seeded, not located) can round onto an existing vertex.
+        for j in 0..self.boundary.len() {
+            let (q, r) = self.edge_ends(self.boundary[j]);
+            for v in [q, r] {
+                if v != self.ghost && self.p(v) == p {
+                    return Inserted::Duplicate(v);
+                }
+            }
+        }
         for j in 0..self.boundary.len() {
             let h = self.boundary[j];
             let (q, r) = self.edge_ends(h);
             let flat =
                 q != self.ghost && r != self.ghost && orient2d(p, self.p(q), self.p(r)) <= 0.0;
-            let tolerated = flat && self.same_input_segment(on_input_seg, q, r);
+            let tolerated = flat && !self.carved && self.same_input_segment(on_input_seg, q, r);
             self.bflat.push(tolerated);
             if flat && !tolerated {
                 let s = self.seg_at(h);

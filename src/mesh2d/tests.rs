@@ -280,20 +280,15 @@ fn slanted_sliver() -> Pslg {
 }
 
 #[test]
-#[ignore = "known bug: in a slanted 1000:1 sliver a split point's cavity wraps around the end of \
-            the domain through exterior slivers and meets the opposite segment from behind \
-            (Error::Internal OnSegment); see issue 2 note"]
 fn slanted_sliver_conforms() {
-    // Rounding-inverted slivers appear outside this domain; conflict tests on them use their
-    // true orientation.
+    // Segments go in as constrained edges and the exterior is carved before any split, so no
+    // split point's cavity can wrap around the end of the sliver.
     let p = slanted_sliver();
     let m = triangulate(&p, &Options::default()).unwrap();
     assert_ok(&m, 1e-3);
 }
 
 #[test]
-#[ignore = "known bug: q30 in a slanted 1000:1 sliver ends in Error::Internal (a split point lands \
-            flat against a segment); see issue 2 note"]
 fn slanted_sliver_q30() {
     let p = slanted_sliver();
     let m = triangulate(
@@ -305,4 +300,177 @@ fn slanted_sliver_q30() {
     )
     .unwrap();
     assert_ok(&m, 1e-3);
+}
+
+// ------------------------------------------------------------------ -Y (fixed segments)
+
+fn no_boundary_steiner(min_angle: Option<f64>, max_area: Option<f64>) -> Options {
+    Options {
+        min_angle,
+        max_area,
+        no_boundary_steiner: true,
+        ..Options::default()
+    }
+}
+
+/// Every mesh edge with a triangle on one side only joins two input vertices.
+fn assert_boundary_unsplit(m: &TriMesh) {
+    for (t, tri) in m.triangles.iter().enumerate() {
+        for i in 0..3 {
+            if m.neighbors[t][i] == NONE {
+                let (a, b) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+                assert!(
+                    (a as usize) < m.num_input_vertices && (b as usize) < m.num_input_vertices,
+                    "boundary edge ({a}, {b}) has a Steiner endpoint"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn no_boundary_steiner_keeps_boundary_segments_whole() {
+    let p = square_with_hole();
+    for opts in [
+        no_boundary_steiner(None, None),
+        no_boundary_steiner(Some(30.0), None),
+        no_boundary_steiner(Some(30.0), Some(0.001)),
+    ] {
+        let m = triangulate(&p, &opts).unwrap();
+        m.validate_constrained().unwrap();
+        assert_boundary_unsplit(&m);
+        assert_eq!(m.segments.len(), 8, "a boundary segment was split");
+        assert!((m.area() - 0.96).abs() < 1e-12);
+    }
+}
+
+/// The square with a hole plus interior points on a 4 x 4 grid around the hole.
+fn square_with_hole_and_points() -> Pslg {
+    let mut p = square_with_hole();
+    for i in 0..4 {
+        for j in 0..4 {
+            let (x, y) = (0.1 + 0.8 * i as f64 / 3.0, 0.1 + 0.8 * j as f64 / 3.0);
+            if !(0.3..=0.7).contains(&x) || !(0.3..=0.7).contains(&y) {
+                p.points.push([x, y]);
+            }
+        }
+    }
+    p
+}
+
+#[test]
+fn no_boundary_steiner_refines_away_from_the_boundary() {
+    // Interior input points give triangles whose refinement points encroach nothing: those
+    // are refined, the rest stay as they are (as in Triangle, where -Y on the bare square with
+    // a hole adds no point at all).
+    let p = square_with_hole_and_points();
+    let m = triangulate(&p, &no_boundary_steiner(Some(30.0), Some(0.002))).unwrap();
+    m.validate_constrained().unwrap();
+    assert_boundary_unsplit(&m);
+    assert_eq!(m.segments.len(), 8);
+    assert!(m.steiner_points > 20, "{} Steiner points", m.steiner_points);
+    let good = m.triangles.iter().filter(|t| {
+        let [a, b, c] = t.map(|v| m.vertices[v as usize]);
+        0.5 * crate::geometry::area2(a, b, c) <= 0.002
+    });
+    assert!(2 * good.count() > m.triangles.len());
+}
+
+#[test]
+fn no_boundary_steiner_gives_a_constrained_not_a_conforming_mesh() {
+    // A thin triangle whose circumcircle holds an input point lying outside the domain, behind
+    // the long side: the conforming mesh splits that side, -Y must not.
+    let mut p = Pslg::default();
+    p.points = vec![[0.0, 0.0], [2.0, 0.0], [1.0, 0.1], [1.0, -0.2]];
+    p.segments = vec![[0, 1], [1, 2], [2, 0]];
+    let m = triangulate(&p, &no_boundary_steiner(None, None)).unwrap();
+    assert_eq!((m.triangles.len(), m.steiner_points), (1, 0));
+    m.validate_constrained().unwrap();
+    let err = m.validate().unwrap_err();
+    assert!(err.contains("vertex 3"), "{err}");
+    let conforming = triangulate(&p, &Options::default()).unwrap();
+    conforming.validate().unwrap();
+    assert!(conforming.steiner_points > 0);
+}
+
+#[test]
+fn no_boundary_steiner_still_splits_interior_segments() {
+    // The diagonal has the domain on both sides: -Y may split it, and must where the
+    // refinement needs it (a 1:20 rectangle with q30 cannot leave it whole).
+    let mut p = Pslg::default();
+    p.points = vec![[0.0, 0.0], [20.0, 0.0], [20.0, 1.0], [0.0, 1.0]];
+    p.segments = vec![[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]];
+    let m = triangulate(&p, &no_boundary_steiner(Some(30.0), None)).unwrap();
+    m.validate_constrained().unwrap();
+    assert_boundary_unsplit(&m);
+    let boundary = m.segments.iter().filter(|e| {
+        let (a, b) = (e[0] as usize, e[1] as usize);
+        a < 4 && b < 4 && !((a == 0 && b == 2) || (a == 2 && b == 0))
+    });
+    assert_eq!(boundary.count(), 4);
+    assert!(
+        m.segments.len() > 5,
+        "the interior diagonal was never split"
+    );
+}
+
+#[test]
+fn no_steiner_on_any_segment_keeps_every_segment_whole() {
+    let mut p = square_with_hole_and_points();
+    let n = p.points.len() as u32;
+    p.points.push([0.05, 0.95]);
+    p.segments.push([0, n]);
+    let opts = Options {
+        min_angle: Some(30.0),
+        max_area: Some(0.002),
+        ..Options::default()
+    };
+    let m = super::build::run_with(&p, &opts, super::refine::SegmentSteiner::Nowhere).unwrap();
+    m.validate_constrained().unwrap();
+    assert_eq!(m.segments.len(), p.segments.len());
+    for e in &m.segments {
+        assert!(e.iter().all(|&v| (v as usize) < p.points.len()));
+    }
+    assert!(m.steiner_points > 10, "{} Steiner points", m.steiner_points);
+}
+
+#[test]
+fn constrained_insertion_of_a_long_segment() {
+    // A segment across a cloud of points crosses many triangles; with no segment split at
+    // all it must come out as one edge of a triangulation of exactly the input points.
+    let mut p = Pslg::default();
+    let mut s: u64 = 11;
+    let mut rnd = || {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    };
+    p.points = vec![[-1.0, -1.0], [2.0, -1.0], [2.0, 2.0], [-1.0, 2.0]];
+    for _ in 0..400 {
+        p.points.push([rnd(), rnd()]);
+    }
+    p.points.push([-0.5, 0.3]);
+    p.points.push([1.5, 0.71]);
+    let n = p.points.len() as u32;
+    p.segments = vec![[n - 2, n - 1]];
+    let opts = Options {
+        convex_hull: true,
+        ..Options::default()
+    };
+    let m = super::build::run_with(&p, &opts, super::refine::SegmentSteiner::Nowhere).unwrap();
+    m.validate_constrained().unwrap();
+    assert_eq!(m.steiner_points, 0);
+    assert_eq!(m.triangles.len(), 2 * p.points.len() - 2 - 4);
+    let has_edge = m.triangles.iter().any(|t| {
+        (0..3).any(|i| {
+            let (a, b) = (t[i], t[(i + 1) % 3]);
+            (a, b) == (n - 2, n - 1) || (a, b) == (n - 1, n - 2)
+        })
+    });
+    assert!(has_edge, "the segment is not an edge");
+    // The conforming mesh of the same input is Delaunay and splits the segment.
+    let c = triangulate(&p, &opts).unwrap();
+    c.validate().unwrap();
+    assert!(c.steiner_points > 0);
 }

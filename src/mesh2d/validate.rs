@@ -3,7 +3,7 @@
 
 use std::collections::HashMap;
 
-use super::grid::PointGrid;
+use super::kdtree::PointTree;
 use super::{TriMesh, NONE};
 use crate::geometry::circumcenter;
 use crate::predicates::{incircle, orient2d};
@@ -11,6 +11,43 @@ use crate::predicates::{incircle, orient2d};
 pub(super) fn validate(m: &TriMesh) -> Result<(), String> {
     validate_structure(m, true)?;
     check_empty_circles(m)
+}
+
+/// The structure plus the constrained empty-circle rule: no vertex visible from a triangle's
+/// interior (not hidden behind a subsegment) lies strictly inside its circumcircle. Checked in
+/// its local form, which is equivalent for a triangulated domain bounded by segments (Lee and
+/// Lin; Chew): every edge that is not a subsegment has two triangles, and neither's far vertex
+/// lies strictly inside the other's circumcircle.
+pub(super) fn validate_constrained(m: &TriMesh) -> Result<(), String> {
+    validate_structure(m, true)?;
+    let mut seg: HashMap<(u32, u32), ()> = HashMap::with_capacity(m.segments.len());
+    for e in &m.segments {
+        seg.insert((e[0].min(e[1]), e[0].max(e[1])), ());
+    }
+    for (t, tri) in m.triangles.iter().enumerate() {
+        for i in 0..3 {
+            let n = m.neighbors[t][i];
+            if n == NONE || (n as usize) < t {
+                continue;
+            }
+            let (p, q) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+            if seg.contains_key(&(p.min(q), p.max(q))) {
+                continue;
+            }
+            let other = m.triangles[n as usize];
+            let Some(far) = other.iter().copied().find(|&v| v != p && v != q) else {
+                return Err(format!("triangles {t} and {n} share all their vertices"));
+            };
+            let [a, b, c] = tri.map(|v| m.vertices[v as usize]);
+            if incircle(a, b, c, m.vertices[far as usize]) > 0.0 {
+                return Err(format!(
+                    "vertex {far} lies inside the circumcircle of triangle {t} and is visible \
+                     from it across edge ({p}, {q}), which is no segment"
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Everything but the empty-circle check: indices, orientation, subsegments, and with
@@ -116,16 +153,16 @@ pub(super) fn validate_structure(m: &TriMesh, adjacency: bool) -> Result<(), Str
     Ok(())
 }
 
-/// Every triangle's open circumdisk must hold no vertex. Candidates come from a uniform grid
-/// over the vertices; the float circumcircle only selects cells (generously padded), the
-/// decision is the exact in-circle test.
+/// Every triangle's open circumdisk must hold no vertex. Candidates come from a k-d tree over
+/// the vertices; the float circumcircle only selects them (generously padded), the decision
+/// is the exact in-circle test.
 fn check_empty_circles(m: &TriMesh) -> Result<(), String> {
     let nv = m.vertices.len();
     if nv == 0 || m.triangles.is_empty() {
         return Ok(());
     }
     let ids: Vec<u32> = (0..nv as u32).collect();
-    let grid = PointGrid::new(&m.vertices, &ids);
+    let tree = PointTree::new(&m.vertices, &ids);
     for (t, tri) in m.triangles.iter().enumerate() {
         let [a, b, c] = tri.map(|v| m.vertices[v as usize]);
         let Some(o) = circumcenter(a, b, c) else {
@@ -133,7 +170,7 @@ fn check_empty_circles(m: &TriMesh) -> Result<(), String> {
         };
         let r = ((o[0] - a[0]).hypot(o[1] - a[1])) * (1.0 + 1e-9) + 1e-300;
         let mut inside = None;
-        grid.for_each_near(o, r, |v| {
+        tree.for_each_near(o, r, |v| {
             if !tri.contains(&v) && incircle(a, b, c, m.vertices[v as usize]) > 0.0 {
                 inside = Some(v);
                 return false;

@@ -20,9 +20,10 @@ pub struct Switches {
     pub region_area: bool,
     /// `A`: write regional attributes to the `.ele` file.
     pub region_attributes: bool,
-    /// `D`: conforming Delaunay. Accepted for compatibility; idmesh output always is.
+    /// `D`: conforming Delaunay. Accepted for compatibility; idmesh output always is (unless
+    /// `Y` is given).
     pub conforming_delaunay: bool,
-    /// `Y`: no Steiner points on boundary segments.
+    /// `Y`: no Steiner points on boundary segments (constrained Delaunay output).
     pub no_boundary_steiner: bool,
     /// `S[n]`: at most `n` Steiner points (`S` alone is 0, as in Triangle).
     pub max_steiner: Option<u64>,
@@ -141,7 +142,9 @@ fn parse_group(arg: &str, sw: &mut Switches, y_count: &mut u32) -> Result<(), St
             'Y' => {
                 *y_count += 1;
                 if *y_count > 1 {
-                    return Err("-YY (no Steiner points on any segment) is not supported".into());
+                    return Err(
+                        "-YY (no Steiner points on any segment) is not supported yet; -Y is".into(),
+                    );
                 }
                 sw.no_boundary_steiner = true;
             }

@@ -30,8 +30,10 @@ Switches are letters that may be grouped, e.g. -pq30a0.01V:
   -a[AREA]    with a number: maximum triangle area; without: the .poly file's regional bounds
   -A          write each triangle's regional attribute to the .ele file
   -c          mesh the convex hull of the input, not only the area enclosed by segments
-  -D          conforming Delaunay (accepted; idmesh output always is)
-  -Y          no Steiner points on boundary segments
+  -D          conforming Delaunay (accepted; idmesh output always is, except with -Y)
+  -Y          no Steiner points on boundary segments (those with the domain on one side):
+              the mesh is then constrained Delaunay, and triangles whose new vertex would
+              encroach such a segment keep their bad angle or size, as in Triangle
   -S[N]       at most N Steiner points (-S alone: none); a warning is printed if reached
   -z          number output items from 0
   -e          write an .edge file      -n   write a .neigh file

@@ -1,0 +1,82 @@
+//! Lawson flips: restores the constrained Delaunay property after a wall is taken off an edge
+//! (a segment split at a vertex lying beside it within rounding), when that edge and the ones
+//! behind it may no longer be locally Delaunay.
+
+use super::store::{next, prev, Cdt};
+use super::NONE;
+use crate::predicates::{incircle, orient2d};
+
+impl Cdt {
+    /// Flips edges, starting from half-edge `h`, until every edge reached is a wall, on the
+    /// hull or carved boundary, or locally Delaunay (exact in-circle test). The budget is
+    /// generous (flips are quadratic at worst); running out leaves a valid triangulation.
+    /// The triangles changed are left in `new_tris`.
+    pub fn legalize(&mut self, h: u32) {
+        let mut stack = std::mem::take(&mut self.rec.flips);
+        stack.clear();
+        self.new_tris.clear();
+        stack.push(h);
+        let mut budget = 16 * self.num_slots() + 64;
+        while let Some(h) = stack.pop() {
+            if budget == 0 {
+                break;
+            }
+            budget -= 1;
+            let (t1, i) = ((h / 3) as usize, (h % 3) as usize);
+            if self.tv[t1][0] == NONE || self.ts[t1][i] != NONE {
+                continue;
+            }
+            let tw = self.tn[t1][i];
+            if tw == NONE || self.is_ghost(t1 as u32) || self.is_ghost(tw / 3) {
+                continue;
+            }
+            let (t2, j) = ((tw / 3) as usize, (tw % 3) as usize);
+            let (p, u, w) = (self.tv[t1][i], self.tv[t1][next(i)], self.tv[t1][prev(i)]);
+            let q = self.tv[t2][j];
+            let (pp, pu, pw, pq) = (self.p(p), self.p(u), self.p(w), self.p(q));
+            if orient2d(pp, pu, pw) <= 0.0 || incircle(pp, pu, pw, pq) <= 0.0 {
+                continue;
+            }
+            // The quadrilateral p, u, q, w must be strictly convex for the flip.
+            if orient2d(pp, pu, pq) <= 0.0 || orient2d(pq, pw, pp) <= 0.0 {
+                continue;
+            }
+            // Outer edges: A = (w, p) and B = (p, u) of t1; C = (u, q) and D = (q, w) of t2.
+            let (a, sa) = (self.tn[t1][next(i)], self.ts[t1][next(i)]);
+            let (b, sb) = (self.tn[t1][prev(i)], self.ts[t1][prev(i)]);
+            let (c, sc) = (self.tn[t2][next(j)], self.ts[t2][next(j)]);
+            let (d, sd) = (self.tn[t2][prev(j)], self.ts[t2][prev(j)]);
+            let (t1u, t2u) = (t1 as u32, t2 as u32);
+            // New t1 = (p, u, q): edges (u, q) = C, (q, p) = diagonal, (p, u) = B.
+            // New t2 = (q, w, p): edges (w, p) = A, (p, q) = diagonal, (q, w) = D.
+            self.tv[t1] = [p, u, q];
+            self.tv[t2] = [q, w, p];
+            self.tn[t1] = [c, 3 * t2u + 1, b];
+            self.tn[t2] = [a, 3 * t1u + 1, d];
+            self.ts[t1] = [sc, NONE, sb];
+            self.ts[t2] = [sa, NONE, sd];
+            self.tflat[t1] = false;
+            self.tflat[t2] = false;
+            for (outer, me) in [
+                (c, 3 * t1u),
+                (b, 3 * t1u + 2),
+                (a, 3 * t2u),
+                (d, 3 * t2u + 2),
+            ] {
+                if outer != NONE {
+                    self.tn[(outer / 3) as usize][(outer % 3) as usize] = me;
+                }
+            }
+            for v in [p, u] {
+                self.vtri[v as usize] = t1u;
+            }
+            for v in [q, w] {
+                self.vtri[v as usize] = t2u;
+            }
+            stack.extend_from_slice(&[3 * t1u, 3 * t1u + 2, 3 * t2u, 3 * t2u + 2]);
+            self.new_tris.extend_from_slice(&[t1u, t2u]);
+        }
+        self.rec.flips = stack;
+        self.hint = h / 3;
+    }
+}

@@ -1390,10 +1390,22 @@ mod tests {
         let mut o = options(25.0, 0.0);
         o.no_boundary_steiner = 1;
         assert_eq!(unsafe { idm_mesher2d_set_options(m.0, &o) }, IDM_OK);
-        assert_eq!(unsafe { idm_mesher2d_refine(m.0) }, IDM_OK, "{}", last_error());
-        assert_eq!(unsafe { idm_mesher2d_validate(m.0) }, IDM_OK, "{}", last_error());
+        assert_eq!(
+            unsafe { idm_mesher2d_refine(m.0) },
+            IDM_OK,
+            "{}",
+            last_error()
+        );
+        assert_eq!(
+            unsafe { idm_mesher2d_validate(m.0) },
+            IDM_OK,
+            "{}",
+            last_error()
+        );
         // Every boundary subsegment joins two input vertices.
-        let mesh = unsafe { mesh_of(m.0) }.unwrap();
+        let Ok(mesh) = (unsafe { mesh_of(m.0) }) else {
+            panic!("no mesh after a successful refine")
+        };
         let n = mesh.num_input_vertices as u32;
         assert!(mesh.segments.iter().all(|s| s[0] < n && s[1] < n));
     }

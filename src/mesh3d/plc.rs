@@ -37,6 +37,10 @@ enum Enc {
 
 struct Mesher<'a> {
     opts: &'a Options3,
+    plc: &'a Plc,
+    /// A cavity crossed a subface of a facet the new point is not on: inherited regions may
+    /// be wrong until the next classification.
+    dirty: bool,
     pts: Vec<[f64; 3]>,
     tets: Tets,
     feat: Features,
@@ -82,6 +86,8 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
         .collect();
     let mut m = Mesher {
         opts,
+        plc,
+        dirty: false,
         pts: plc.points.clone(),
         tets,
         feat,
@@ -110,12 +116,19 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
     m.run()?;
     m.classify(plc)?;
     if m.wants_quality() {
-        for t in 0..m.tets.num_slots() as u32 {
-            m.maybe_queue_tet(t);
+        // Late facet splits may move region borders (new tets inherit their region from the
+        // cavity, which can be wrong next to a split facet): classify again and repeat until
+        // no tet inside is left bad.
+        for _round in 0..8 {
+            for t in 0..m.tets.num_slots() as u32 {
+                m.maybe_queue_tet(t);
+            }
+            if m.tet_q.is_empty() || !m.complete {
+                break;
+            }
+            m.run()?;
+            m.classify(plc)?;
         }
-        m.run()?;
-        // Late facet splits may have moved region borders: classify again for the output.
-        m.classify(plc)?;
     }
     m.output(plc)
 }
@@ -260,6 +273,15 @@ impl Mesher<'_> {
                     if crossed || in_diametral_ball_tri(a, b, c, p) {
                         enc.push(Enc::Face(fv, fid));
                     }
+                    if crossed
+                        && !self
+                            .feat
+                            .vert_facets
+                            .get(&v)
+                            .is_some_and(|fs| fs.contains(&fid))
+                    {
+                        self.dirty = true;
+                    }
                     touched_faces.push((fv, fid));
                 }
             }
@@ -352,6 +374,13 @@ impl Mesher<'_> {
                 self.take_subseg(s, force)?;
             } else if let Some((f, fid, force)) = self.face_q.pop_front() {
                 self.take_subface(f, fid, force)?;
+            } else if self.dirty && self.classified {
+                // Conformity is restored: fix the regions before judging tets again.
+                self.dirty = false;
+                self.classify(self.plc)?;
+                for t in 0..self.tets.num_slots() as u32 {
+                    self.maybe_queue_tet(t);
+                }
             } else if let Some((t, vs)) = self.tet_q.pop_front() {
                 if self.cap_reached() {
                     self.complete = false;

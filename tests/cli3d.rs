@@ -367,7 +367,6 @@ fn mesh_example(name: &str, switches: &str, base: u32) -> (TempDir, Mesh) {
 }
 
 #[test]
-#[ignore = "needs the 3D mesher"]
 fn cube_quality_mesh_fills_the_cube_with_markers_and_bounds() {
     let (d, m) = mesh_example("3d_cube.poly", "-pq1.414ea0.01Q", 1);
     assert!(close(m.volume(), 1.0), "{}", m.volume());
@@ -401,7 +400,6 @@ fn cube_quality_mesh_fills_the_cube_with_markers_and_bounds() {
 }
 
 #[test]
-#[ignore = "needs the 3D mesher"]
 fn box_with_cavity_has_regional_attributes_and_volume_bounds() {
     let (_d, m) = mesh_example("3d_box_hole.poly", "-pq1.5aAQ", 0);
     assert!(close(m.volume(), 32.0 - 4.0), "{}", m.volume());
@@ -416,7 +414,6 @@ fn box_with_cavity_has_regional_attributes_and_volume_bounds() {
 }
 
 #[test]
-#[ignore = "needs the 3D mesher"]
 fn surface_formats_mesh_to_their_volumes_with_tetgen_numbering() {
     for (name, base, volume) in [
         ("3d_pyramid.off", 0, 2.0),
@@ -431,7 +428,6 @@ fn surface_formats_mesh_to_their_volumes_with_tetgen_numbering() {
 }
 
 #[test]
-#[ignore = "needs the 3D mesher"]
 fn all_faces_neighbours_and_consistency_check_agree() {
     let (d, m) = mesh_example("3d_lprism.smesh", "-pq1.414fnCQ", 0);
     let n = m.points.len();

@@ -6,7 +6,7 @@
 //! the input numbering.
 
 use super::order::brio_hilbert_order;
-use super::store::{Insertion, Tets, FACE, GHOST};
+use super::store::{Insertion, TetId, Tets, VertexId, FACE, GHOST};
 use super::{TetMesh, NONE};
 use crate::error::{Error, InputError};
 use crate::predicates::{orient2d, orient3d};
@@ -29,7 +29,7 @@ pub(crate) fn check_points(points: &[[f64; 3]]) -> Result<(), Error> {
         }
     }
     if points.len() < 4 {
-        return Err(InputError::TooFewPoints {
+        return Err(InputError::TooFewPoints3 {
             count: points.len(),
         }
         .into());
@@ -47,54 +47,59 @@ fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
         && orient2d(zx(a), zx(b), zx(c)) == 0.0
 }
 
-/// Positions (in `pts`) of the first four points, in order, that span a tetrahedron: the first
-/// point, the next one distinct from it, the next one off their line, the next one off their
-/// plane. Errors when the points are all equal, collinear or coplanar.
-fn first_tet(pts: &[[f64; 3]], input_of: &[u32]) -> Result<[usize; 4], Error> {
-    let n = pts.len();
-    let i0 = 0;
-    let i1 = (1..n).find(|&i| pts[i] != pts[i0]).ok_or_else(|| {
-        let (a, b) = (input_of[0] as usize, input_of[1] as usize);
+/// Positions in `order` of the first four vertices that span a tetrahedron: the first vertex,
+/// the next one at a different point, the next one off their line, the next one off their
+/// plane. Errors (naming input points through `index_of`) when the points are all equal,
+/// collinear or coplanar.
+fn first_tet(
+    tets: &Tets,
+    order: &[VertexId],
+    index_of: &impl Fn(VertexId) -> usize,
+) -> Result<[usize; 4], Error> {
+    let p = |i: usize| tets.point(order[i]);
+    let n = order.len();
+    let i1 = (1..n).find(|&i| p(i) != p(0)).ok_or_else(|| {
+        let (a, b) = (index_of(order[0]), index_of(order[1]));
         InputError::DuplicatePoint {
             first: a.min(b),
             second: a.max(b),
         }
     })?;
     let i2 = (i1 + 1..n)
-        .find(|&i| !collinear(pts[i0], pts[i1], pts[i]))
+        .find(|&i| !collinear(p(0), p(i1), p(i)))
         .ok_or(InputError::AllCollinear)?;
-    // TODO(error.rs): an `AllCoplanar` variant would name this case exactly.
     let i3 = (i2 + 1..n)
-        .find(|&i| orient3d(pts[i0], pts[i1], pts[i2], pts[i]) != 0.0)
-        .ok_or(InputError::AllCollinear)?;
-    Ok([i0, i1, i2, i3])
+        .find(|&i| orient3d(p(0), p(i1), p(i2), p(i)) != 0.0)
+        .ok_or(InputError::AllCoplanar)?;
+    Ok([0, i1, i2, i3])
 }
 
-/// Builds the Delaunay tetrahedralization of `points` into a fresh kernel. Vertex `k` of the
-/// kernel is input point `input_of[k]`. Errors on invalid, duplicate or flat input.
-pub(crate) fn build(points: &[[f64; 3]]) -> Result<(Tets, Vec<u32>), Error> {
-    check_points(points)?;
-    let input_of = brio_hilbert_order(points, ORDER_SEED);
-    let mut tets = Tets::with_capacity(points.len());
-    for &i in &input_of {
-        tets.push_vertex(points[i as usize]);
+/// Inserts the vertices `order` (pushed, none inserted yet, at least two) into the empty
+/// kernel `tets`, in that order, except that the first four that span a tetrahedron (see
+/// [`first_tet`]) make the first tet. Returns the last tet created (a walking hint).
+///
+/// Errors name input points through `index_of` (the caller's numbering): a duplicate point
+/// (both indices), all points equal, collinear or coplanar, or an internal failure.
+pub(crate) fn insert_vertices(
+    tets: &mut Tets,
+    order: &[VertexId],
+    index_of: impl Fn(VertexId) -> usize,
+) -> Result<TetId, Error> {
+    if order.len() < 4 {
+        return Err(InputError::TooFewPoints3 { count: order.len() }.into());
     }
-    let first = first_tet_in(&tets, &input_of)?;
-    tets.init(
-        first[0] as u32,
-        first[1] as u32,
-        first[2] as u32,
-        first[3] as u32,
-    );
-    let mut hint = tets.vertex_tet(first[0] as u32);
-    for v in 0..tets.num_vertices() as u32 {
-        if first.contains(&(v as usize)) {
+    let first = first_tet(tets, order, &index_of)?;
+    let [a, b, c, d] = first.map(|i| order[i]);
+    tets.init(a, b, c, d);
+    let mut hint = tets.vertex_tet(a);
+    for (i, &v) in order.iter().enumerate() {
+        if first.contains(&i) {
             continue;
         }
         match tets.try_insert(v, hint) {
             Insertion::Inserted(t) => hint = t,
             Insertion::Duplicate(w) => {
-                let (a, b) = (input_of[v as usize] as usize, input_of[w as usize] as usize);
+                let (a, b) = (index_of(v), index_of(w));
                 return Err(InputError::DuplicatePoint {
                     first: a.min(b),
                     second: a.max(b),
@@ -103,28 +108,29 @@ pub(crate) fn build(points: &[[f64; 3]]) -> Result<(Tets, Vec<u32>), Error> {
             }
             Insertion::Lost => {
                 return Err(Error::Internal(format!(
-                    "delaunay3d: no tetrahedron in conflict with point {}",
-                    input_of[v as usize]
+                    "3D Delaunay: no tetrahedron in conflict with point {}",
+                    index_of(v)
                 )))
             }
         }
     }
-    Ok((tets, input_of))
+    Ok(hint)
 }
 
-/// [`first_tet`] on the kernel's (insertion-ordered) vertices.
-fn first_tet_in(tets: &Tets, input_of: &[u32]) -> Result<[usize; 4], Error> {
-    // A short prefix nearly always suffices; grow it only for (nearly) flat inputs.
-    let n = tets.num_vertices();
-    let mut len = 64.min(n);
-    loop {
-        let prefix: Vec<[f64; 3]> = (0..len as u32).map(|v| tets.point(v)).collect();
-        match first_tet(&prefix, input_of) {
-            Ok(f) => return Ok(f),
-            Err(e) if len == n => return Err(e),
-            Err(_) => len = (len * 8).min(n),
-        }
+/// Builds the Delaunay tetrahedralization of `points` into a fresh kernel, inserting in BRIO +
+/// Hilbert order. Kernel vertex `k` is input point `input_of[k]`: vertices are numbered in
+/// insertion order, so that consecutive insertions touch nearby memory. Errors on invalid,
+/// duplicate or flat input.
+pub(crate) fn build(points: &[[f64; 3]]) -> Result<(Tets, Vec<u32>), Error> {
+    check_points(points)?;
+    let input_of = brio_hilbert_order(points, ORDER_SEED);
+    let mut tets = Tets::with_capacity(points.len());
+    for &i in &input_of {
+        tets.push_vertex(points[i as usize]);
     }
+    let order: Vec<VertexId> = (0..points.len() as VertexId).collect();
+    insert_vertices(&mut tets, &order, |v| input_of[v as usize] as usize)?;
+    Ok((tets, input_of))
 }
 
 /// The Delaunay tetrahedralization of `points` as a [`TetMesh`] (see [`super::delaunay3d`]).

@@ -5,8 +5,11 @@
 use std::collections::BTreeSet;
 
 use super::delaunay::build;
-use super::order::{brio_hilbert_order, hilbert_index, hilbert_index_bits};
-use super::store::{in_circumcircle_coplanar, Located, Tets, FACE, GHOST};
+use super::order::{brio_hilbert_order, hilbert_index_bits};
+use super::store::{
+    in_circumcircle_coplanar, insphere_dd, insphere_fast, insphere_small_integers, Located, Tets,
+    FACE, GHOST,
+};
 use super::{delaunay3d, TetMesh, NONE};
 use crate::error::{Error, InputError};
 use crate::predicates::{insphere, orient3d};
@@ -65,7 +68,14 @@ fn hull_vol6_exact(m: &TetMesh) -> i128 {
     let o = m.vertices[m.faces[0][0] as usize];
     m.faces
         .iter()
-        .map(|f| vol6_exact([o, m.vertices[f[0] as usize], m.vertices[f[1] as usize], m.vertices[f[2] as usize]]))
+        .map(|f| {
+            vol6_exact([
+                o,
+                m.vertices[f[0] as usize],
+                m.vertices[f[1] as usize],
+                m.vertices[f[2] as usize],
+            ])
+        })
         .sum()
 }
 
@@ -83,7 +93,10 @@ fn check_dt(pts: &[[f64; 3]]) -> TetMesh {
             used[v as usize] = true;
         }
     }
-    assert!(used.iter().all(|&u| u), "a point is missing from the tetrahedralization");
+    assert!(
+        used.iter().all(|&u| u),
+        "a point is missing from the tetrahedralization"
+    );
     let mut edges = std::collections::HashMap::new();
     for f in &m.faces {
         for i in 0..3 {
@@ -91,12 +104,23 @@ fn check_dt(pts: &[[f64; 3]]) -> TetMesh {
             *edges.entry((a.min(b), a.max(b))).or_insert(0) += 1;
             // Outward-consistent orientation: each directed edge once.
             assert!(
-                !m.faces.iter().any(|g| g != f && (0..3).any(|j| g[j] == a && g[(j + 1) % 3] == b)),
+                !m.faces
+                    .iter()
+                    .any(|g| g != f && (0..3).any(|j| g[j] == a && g[(j + 1) % 3] == b)),
                 "hull faces are not consistently oriented at edge {a}-{b}"
             );
         }
     }
-    assert!(edges.values().all(|&c| c == 2), "hull is not a closed surface");
+    assert!(
+        edges.values().all(|&c| c == 2),
+        "hull is not a closed surface"
+    );
+    // Outward: counter-clockwise seen from outside, so no point lies above any hull face.
+    for (i, f) in m.faces.iter().enumerate() {
+        let [a, b, c] = f.map(|v| pts[v as usize]);
+        let above = pts.iter().position(|&q| orient3d(a, b, c, q) < 0.0);
+        assert!(above.is_none(), "point {above:?} is outside hull face {i}");
+    }
     let boundary = m.neighbors.iter().flatten().filter(|&&n| n == NONE).count();
     assert_eq!(boundary, m.faces.len());
     m
@@ -111,7 +135,16 @@ fn check_kernel(pts: &[[f64; 3]]) -> Tets {
 
 #[test]
 fn random_points_several_seeds_and_sizes() {
-    for (n, seed) in [(10, 1), (11, 2), (50, 3), (200, 4), (1000, 5), (5000, 6)] {
+    for (n, seed) in [
+        (4, 7),
+        (5, 8),
+        (10, 1),
+        (11, 2),
+        (50, 3),
+        (200, 4),
+        (1000, 5),
+        (5000, 6),
+    ] {
         let pts = random_points(n, seed);
         check_kernel(&pts);
         let m = check_dt(&pts);
@@ -326,7 +359,10 @@ fn volume_is_the_hull_volume_in_any_insertion_order() {
     let m = check_dt(&pts);
     let hull = hull_vol6_exact(&m);
     assert!(hull > 0);
-    assert!(volumes.iter().all(|&v| v == hull), "{volumes:?} vs hull {hull}");
+    assert!(
+        volumes.iter().all(|&v| v == hull),
+        "{volumes:?} vs hull {hull}"
+    );
 }
 
 #[test]
@@ -504,7 +540,11 @@ fn star_edge_and_face_queries_agree_with_the_tets() {
         let brute: BTreeSet<u32> = (0..tets.num_slots() as u32)
             .filter(|&t| tets.alive(t) && tets.verts(t).contains(&v))
             .collect();
-        assert_eq!(star.iter().copied().collect::<BTreeSet<_>>(), brute, "vertex {v}");
+        assert_eq!(
+            star.iter().copied().collect::<BTreeSet<_>>(),
+            brute,
+            "vertex {v}"
+        );
         assert_eq!(star.len(), brute.len());
         assert!(tets.verts(tets.vertex_tet(v)).contains(&v));
     }
@@ -526,11 +566,14 @@ fn star_edge_and_face_queries_agree_with_the_tets() {
     let brute = (0..tets.num_slots() as u32)
         .any(|t| tets.alive(t) && tets.verts(t).contains(&a) && tets.verts(t).contains(&b));
     assert_eq!(tets.find_edge(a, b).is_some(), brute);
-    assert!(tets.find_face(a, b, GHOST).is_some() == tets.find_edge(a, b).is_some_and(|_| {
-        (0..tets.num_slots() as u32).any(|t| {
-            tets.alive(t) && [a, b, GHOST].iter().all(|x| tets.verts(t).contains(x))
-        })
-    }));
+    assert!(
+        tets.find_face(a, b, GHOST).is_some()
+            == tets.find_edge(a, b).is_some_and(|_| {
+                (0..tets.num_slots() as u32).any(|t| {
+                    tets.alive(t) && [a, b, GHOST].iter().all(|x| tets.verts(t).contains(x))
+                })
+            })
+    );
 }
 
 #[test]
@@ -561,9 +604,11 @@ fn duplicates_and_bad_input_are_reported() {
     );
     assert_eq!(
         delaunay3d(&random_points(3, 53)).unwrap_err(),
-        Error::Input(InputError::TooFewPoints { count: 3 })
+        Error::Input(InputError::TooFewPoints3 { count: 3 })
     );
-    let line: Vec<[f64; 3]> = (0..20).map(|i| [i as f64, 2.0 * i as f64, -(i as f64)]).collect();
+    let line: Vec<[f64; 3]> = (0..20)
+        .map(|i| [i as f64, 2.0 * i as f64, -(i as f64)])
+        .collect();
     assert_eq!(
         delaunay3d(&line).unwrap_err(),
         Error::Input(InputError::AllCollinear)
@@ -576,7 +621,10 @@ fn duplicates_and_bad_input_are_reported() {
             [x, y, 10.0 - x - y]
         })
         .collect();
-    assert!(matches!(delaunay3d(&plane), Err(Error::Input(_))));
+    assert_eq!(
+        delaunay3d(&plane).unwrap_err(),
+        Error::Input(InputError::AllCoplanar)
+    );
     let same = vec![[1.0, 2.0, 3.0]; 6];
     assert!(matches!(
         delaunay3d(&same),
@@ -587,7 +635,10 @@ fn duplicates_and_bad_input_are_reported() {
     pts.push(pts[3]);
     assert!(matches!(
         delaunay3d(&pts),
-        Err(Error::Input(InputError::DuplicatePoint { first: 3, second: 40 }))
+        Err(Error::Input(InputError::DuplicatePoint {
+            first: 3,
+            second: 40
+        }))
     ));
 }
 
@@ -606,14 +657,20 @@ fn validate_mesh_catches_corruption() {
     assert!(msg(&m).contains("tet 3"));
     // Broken neighbour link.
     let mut m = good.clone();
-    let t = (0..m.tets.len()).find(|&t| m.neighbors[t][0] != NONE).unwrap();
+    let t = (0..m.tets.len())
+        .find(|&t| m.neighbors[t][0] != NONE)
+        .unwrap();
     m.neighbors[t][0] = NONE;
     assert!(msg(&m).contains(&format!("{t}")));
     // A point moved inside a circumsphere: the Delaunay check names it.
     let mut m = good.clone();
     let [a, b, c, d] = m.corners(0);
     let inside = [0, 1, 2].map(|k| (a[k] + b[k] + c[k] + d[k]) / 4.0);
-    let v = m.tets[1].iter().copied().find(|v| !m.tets[0].contains(v)).unwrap();
+    let v = m.tets[1]
+        .iter()
+        .copied()
+        .find(|v| !m.tets[0].contains(v))
+        .unwrap();
     m.vertices[v as usize] = inside;
     assert!(m.validate().is_err());
     // A subface that is no face.
@@ -672,7 +729,7 @@ fn brio_order_is_a_permutation_and_hilbert_steps_are_unit() {
     for x in 0..4u32 {
         for y in 0..4u32 {
             for z in 0..4u32 {
-                let h = hilbert_index([x, y, z]);
+                let h = hilbert_index_bits([x, y, z], 21);
                 assert!(h < 64, "cell {x} {y} {z} -> {h}");
                 assert!(by_index[h as usize].is_none());
                 by_index[h as usize] = Some([x, y, z]);
@@ -721,4 +778,90 @@ fn kernel_vertices_map_back_to_input_numbering() {
         .count();
     assert_eq!(m.tets.len(), live_real);
     assert_eq!(m.faces.len(), tets.num_live() - live_real);
+}
+
+#[test]
+fn filtered_insphere_agrees_with_the_exact_predicate_near_degeneracy() {
+    let sign = |x: f64| (x > 0.0) as i32 - (x < 0.0) as i32;
+    let mut r = Rng(91);
+    let sphere = |r: &mut Rng, rad: f64, c: [f64; 3]| {
+        let (u, t) = (2.0 * r.f64() - 1.0, std::f64::consts::TAU * r.f64());
+        let q = (1.0 - u * u).sqrt();
+        [
+            c[0] + rad * q * t.cos(),
+            c[1] + rad * q * t.sin(),
+            c[2] + rad * u,
+        ]
+    };
+    let mut decided = 0;
+    for i in 0..20000 {
+        // Five points on one sphere in floating point: the determinant is rounding noise.
+        let (rad, c) = match i % 3 {
+            0 => (1.0, [0.0; 3]),
+            1 => (1e-3, [0.5, 0.25, 0.125]),
+            _ => (7.0, [100.0, -3.0, 12.0]),
+        };
+        let p: Vec<[f64; 3]> = (0..5).map(|_| sphere(&mut r, rad, c)).collect();
+        let exact = sign(insphere(p[0], p[1], p[2], p[3], p[4]));
+        assert_eq!(
+            sign(insphere_fast(p[0], p[1], p[2], p[3], p[4])),
+            exact,
+            "case {i}"
+        );
+        if let Some(dd) = insphere_dd(p[0], p[1], p[2], p[3], p[4]) {
+            assert_eq!(sign(dd), exact, "double-double, case {i}");
+            decided += 1;
+        }
+    }
+    // The double-double stage must settle nearly all of these (that is its purpose).
+    assert!(decided > 19000, "double-double decided only {decided}");
+    // Exactly cospherical integer points: every stage must say 0 or defer.
+    for p in [
+        [3.0, 0.0, 4.0],
+        [0.0, 5.0, 0.0],
+        [-4.0, 3.0, 0.0],
+        [0.0, 0.0, -5.0],
+    ] {
+        let q = [
+            [5.0, 0.0, 0.0],
+            [0.0, -5.0, 0.0],
+            [0.0, 4.0, 3.0],
+            [4.0, 0.0, -3.0],
+        ];
+        assert_eq!(insphere_fast(q[0], q[1], q[2], q[3], p), 0.0);
+        assert!(insphere_dd(q[0], q[1], q[2], q[3], p).is_none());
+        assert_eq!(
+            insphere_small_integers(q[0], q[1], q[2], q[3], p),
+            Some(0.0)
+        );
+    }
+    // Small-integer (after scaling) differences: exact, and agrees with the exact predicate.
+    let mut r = Rng(92);
+    let mut integral = 0;
+    for i in 0..20000 {
+        let s = [1.0, 0.125, 1024.0, 3.0 / 64.0][i % 4];
+        let off = [0.0, 1e6, -37.5, 2.0f64.powi(-30)][(i / 4) % 4];
+        let p: Vec<[f64; 3]> = (0..5)
+            .map(|_| [0, 1, 2].map(|_| off + s * (r.below(9) as f64 - 4.0)))
+            .collect();
+        let exact = sign(insphere(p[0], p[1], p[2], p[3], p[4]));
+        assert_eq!(
+            sign(insphere_fast(p[0], p[1], p[2], p[3], p[4])),
+            exact,
+            "case {i}"
+        );
+        if let Some(v) = insphere_small_integers(p[0], p[1], p[2], p[3], p[4]) {
+            assert_eq!(sign(v), exact, "integer path, case {i}");
+            integral += 1;
+        }
+    }
+    assert_eq!(integral, 20000);
+    // Differences that are not small integers after scaling are left to the other stages.
+    let q = [
+        [0.1, 0.0, 0.0],
+        [0.0, 0.3, 0.0],
+        [0.0, 0.0, 0.7],
+        [1.0, 1.0, 1.0],
+    ];
+    assert!(insphere_small_integers(q[0], q[1], q[2], q[3], [0.2, 0.2, 0.2]).is_none());
 }

@@ -11,7 +11,7 @@ mod facet_mesh;
 mod features;
 #[cfg(test)]
 mod kernel_tests;
-pub mod order;
+mod order;
 mod output;
 mod plc;
 #[cfg(test)]

@@ -6,7 +6,7 @@
 //! and the tets and vertices being touched stay in cache. The order is deterministic (a fixed
 //! seed), so a run is reproducible.
 
-/// Bits per axis of the Hilbert index (3 × 21 = 63 bits fit one `u64`).
+/// Most bits per axis of a Hilbert index (3 × 21 = 63 bits fit one `u64`).
 const BITS: u32 = 21;
 
 /// Each round is this fraction of the points not yet placed (the last round holds the largest
@@ -30,7 +30,7 @@ impl SplitMix64 {
 
     /// Uniform in `0..n` (Lemire's multiply-shift; the tiny bias is irrelevant here).
     fn below(&mut self, n: usize) -> usize {
-        ((self.next() >> 32) * n as u64 >> 32) as usize
+        (((self.next() >> 32) * n as u64) >> 32) as usize
     }
 }
 
@@ -75,9 +75,10 @@ pub fn hilbert_keys(points: &[[f64; 3]]) -> Vec<u64> {
             }
         }
     }
-    let extent = (0..3)
-        .map(|k| hi[k] - lo[k])
-        .fold(0.0f64, |a, b| if b.is_finite() { a.max(b) } else { a });
+    let extent =
+        (0..3)
+            .map(|k| hi[k] - lo[k])
+            .fold(0.0f64, |a, b| if b.is_finite() { a.max(b) } else { a });
     // One level finer than one cell per point (8 to 64 cells per point) is plenty for
     // locality; fewer levels make the keys cheaper.
     let levels = (usize::BITS - points.len().leading_zeros()).div_ceil(3) + 1;
@@ -101,15 +102,10 @@ pub fn hilbert_keys(points: &[[f64; 3]]) -> Vec<u64> {
         .collect()
 }
 
-/// Position of grid cell `x` (each coordinate below `2^21`) along the 3D Hilbert curve
-/// (Skilling's transpose algorithm, "Programming the Hilbert curve", 2004), written without
-/// data-dependent branches (they would be mispredicted half the time).
-pub fn hilbert_index(x: [u32; 3]) -> u64 {
-    hilbert_index_bits(x, BITS)
-}
-
-/// [`hilbert_index`] on a `2^bits` grid (`1 <= bits <= 21`): coordinates below `2^bits`, the
-/// result below `2^(3 bits)`.
+/// Position of grid cell `x` along the 3D Hilbert curve on a `2^bits` grid (`1 <= bits <= 21`,
+/// coordinates below `2^bits`, the result below `2^(3 bits)`): Skilling's transpose algorithm
+/// ("Programming the Hilbert curve", 2004), written without data-dependent branches (they
+/// would be mispredicted half the time).
 pub fn hilbert_index_bits(mut x: [u32; 3], bits: u32) -> u64 {
     let m = 1u32 << (bits - 1);
     // Inverse undo of the excess work.

@@ -38,6 +38,8 @@ enum Enc {
 struct Mesher<'a> {
     opts: &'a Options3,
     plc: &'a Plc,
+    /// Squared size floor for quality work (see `below_floor`).
+    floor2: f64,
     /// A cavity crossed a subface of a facet the new point is not on: inherited regions may
     /// be wrong until the next classification.
     dirty: bool,
@@ -87,6 +89,17 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
     let mut m = Mesher {
         opts,
         plc,
+        floor2: {
+            let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+            for p in &plc.points {
+                for k in 0..3 {
+                    lo[k] = lo[k].min(p[k]);
+                    hi[k] = hi[k].max(p[k]);
+                }
+            }
+            let d2 = crate::geometry::dist2_3(lo, hi);
+            d2 * 2f64.powi(-72)
+        },
         dirty: false,
         pts: plc.points.clone(),
         tets,
@@ -353,6 +366,20 @@ impl Mesher<'_> {
         Ok((self.pts.len() - 1) as u32)
     }
 
+    /// Whether a simplex is too small for quality work: its shortest edge is below 2^-36 of the
+    /// input's diameter. Quality refinement (and the splits a refused circumcenter demands)
+    /// stops there instead of running into the limits of floating point; feature recovery is
+    /// never cut short by this.
+    fn below_floor(&self, c: &[[f64; 3]]) -> bool {
+        let mut e2 = f64::INFINITY;
+        for i in 0..c.len() {
+            for j in i + 1..c.len() {
+                e2 = e2.min(crate::geometry::dist2_3(c[i], c[j]));
+            }
+        }
+        e2 < self.floor2
+    }
+
     fn cap_reached(&self) -> bool {
         self.opts.max_steiner.is_some_and(|c| self.steiner >= c)
     }
@@ -446,6 +473,9 @@ impl Mesher<'_> {
         if !force && !self.subseg_needs_split(a, b, e) {
             return Ok(());
         }
+        if force && self.below_floor(&[self.pts[a as usize], self.pts[b as usize]]) {
+            return Ok(());
+        }
         let mid = self.split_point(a, b);
         let (pa, pb) = (self.pts[a as usize], self.pts[b as usize]);
         if mid == pa || mid == pb {
@@ -525,6 +555,9 @@ impl Mesher<'_> {
             return Ok(());
         }
         let [a, b, c] = v.map(|x| self.pts[x as usize]);
+        if force && self.below_floor(&[a, b, c]) {
+            return Ok(()); // a refused circumcenter's demand; the face is present
+        }
         let Some(cc) = tri_circumcenter3(a, b, c) else {
             return Err(Error::Internal(format!("degenerate subface {v:?}")));
         };
@@ -609,6 +642,9 @@ impl Mesher<'_> {
             return Ok(());
         }
         let c = vs.map(|x| self.pts[x as usize]);
+        if self.below_floor(&c) {
+            return Ok(());
+        }
         let Some(cc) = tet_circumcenter(c) else {
             return Ok(());
         };

@@ -44,7 +44,10 @@ pub(crate) fn check_mesh(plc: &Plc, mesh: &TetMesh) {
     // Orientation (TetGen's positive) — exact.
     for (t, v) in mesh.tets.iter().enumerate() {
         let c = v.map(|x| mesh.vertices[x as usize]);
-        assert!(orient3d(c[0], c[1], c[2], c[3]) < 0.0, "tet {t} not positive");
+        assert!(
+            orient3d(c[0], c[1], c[2], c[3]) < 0.0,
+            "tet {t} not positive"
+        );
     }
     // Every subface is a face of an output tet; every boundary face is a subface.
     let mut face_count: HashMap<[u32; 3], u32> = HashMap::new();
@@ -65,7 +68,10 @@ pub(crate) fn check_mesh(plc: &Plc, mesh: &TetMesh) {
         })
         .collect();
     for f in &subfaces {
-        assert!(face_count.contains_key(f), "subface {f:?} is not a mesh face");
+        assert!(
+            face_count.contains_key(f),
+            "subface {f:?} is not a mesh face"
+        );
     }
     for (f, c) in &face_count {
         if *c == 1 {
@@ -98,7 +104,10 @@ pub(crate) fn check_mesh(plc: &Plc, mesh: &TetMesh) {
             }
         }
     }
-    assert!((area - want).abs() <= 1e-9 * want.max(1.0), "subface area {area} vs facets {want}");
+    assert!(
+        (area - want).abs() <= 1e-9 * want.max(1.0),
+        "subface area {area} vs facets {want}"
+    );
 }
 
 #[test]
@@ -123,7 +132,11 @@ fn unit_cube_quality_and_volume() {
     assert!((mesh.volume() - 1.0).abs() < 1e-9);
     assert!(mesh.tets.len() >= 1000);
     let s = mesh.stats();
-    assert!(s.max_radius_edge <= 1.414 + 1e-9, "max radius-edge {}", s.max_radius_edge);
+    assert!(
+        s.max_radius_edge <= 1.414 + 1e-9,
+        "max radius-edge {}",
+        s.max_radius_edge
+    );
     for t in 0..mesh.tets.len() {
         assert!(crate::geometry::tet_volume(mesh.corners(t)) <= 0.001 * (1.0 + 1e-12));
     }
@@ -148,14 +161,26 @@ fn box_with_hole_box() {
 fn slanted_flat_box_conforms() {
     // A box whose facets are not axis-aligned: rotated corners (rational coordinates).
     let mut plc = Plc::default();
-    let base = [[0.0, 0.0, 0.0], [3.0, 1.0, 0.0], [2.0, 4.0, 0.5], [-1.0, 3.0, 0.5]];
+    let base = [
+        [0.0, 0.0, 0.0],
+        [3.0, 1.0, 0.0],
+        [2.0, 4.0, 0.5],
+        [-1.0, 3.0, 0.5],
+    ];
     for p in base {
         plc.points.push(p);
     }
     for p in base {
         plc.points.push([p[0] + 0.25, p[1] - 0.5, p[2] + 2.0]);
     }
-    let quads = [[0, 1, 2, 3], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]];
+    let quads = [
+        [0, 1, 2, 3],
+        [4, 5, 6, 7],
+        [0, 1, 5, 4],
+        [1, 2, 6, 5],
+        [2, 3, 7, 6],
+        [3, 0, 4, 7],
+    ];
     for q in quads {
         plc.facets.push(Facet {
             polygons: vec![q.to_vec()],

@@ -173,12 +173,28 @@ fn orient3d_fast(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
     }
 }
 
-/// [`insphere`] with a cheaper floating-point filter inlined: Shewchuk's stage-A error bound
-/// with the permanent bounded from the largest coordinate differences (as in CGAL's static
-/// filters); when the rounded determinant clears it, its sign is exact. Otherwise the full
-/// adaptive predicate decides. Only the sign of the result is meaningful.
+/// [`insphere`] with a cheaper floating-point filter inlined (see [`insphere_filter`]); the
+/// rare uncertain cases go to [`insphere_near_degenerate`]. Only the sign of the result is
+/// meaningful.
 #[inline(always)]
-fn insphere_fast(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3], e: [f64; 3]) -> f64 {
+pub(super) fn insphere_fast(
+    a: [f64; 3],
+    b: [f64; 3],
+    c: [f64; 3],
+    d: [f64; 3],
+    e: [f64; 3],
+) -> f64 {
+    match insphere_filter(a, b, c, d, e) {
+        Some(det) => det,
+        None => insphere_near_degenerate(&a, &b, &c, &d, &e),
+    }
+}
+
+/// Shewchuk's stage-A evaluation of insphere with a cheaper error bound: the permanent is
+/// bounded from the largest coordinate differences (as in CGAL's static filters). Returns the
+/// rounded determinant when it clears the bound (then its sign is exact), else `None`.
+#[inline(always)]
+fn insphere_filter(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3], e: [f64; 3]) -> Option<f64> {
     let (aex, bex, cex, dex) = (a[0] - e[0], b[0] - e[0], c[0] - e[0], d[0] - e[0]);
     let (aey, bey, cey, dey) = (a[1] - e[1], b[1] - e[1], c[1] - e[1], d[1] - e[1]);
     let (aez, bez, cez, dez) = (a[2] - e[2], b[2] - e[2], c[2] - e[2], d[2] - e[2]);
@@ -214,11 +230,224 @@ fn insphere_fast(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3], e: [f64; 3]
     let permanent = 24.0 * (1.0 + 1e-12) * (mx * my * mz) * (mx * mx + my * my + mz * mz);
     let bound = ISP_BOUND_A * permanent;
     // A bound that underflowed proves nothing: leave those to the adaptive predicate.
-    if (det > bound || -det > bound) && bound > 1e-290 {
-        det
-    } else {
-        insphere(a, b, c, d, e)
+    ((det > bound || -det > bound) && bound > 1e-290).then_some(det)
+}
+
+/// The slow path of [`insphere_fast`]: a double-double evaluation with a proven error bound
+/// (see [`insphere_dd`]), then Shewchuk's adaptive stages. Nearly cospherical points (a point
+/// set on a sphere, say) fail the float filter on almost every test; double-double settles
+/// nearly all of them at a fraction of the cost of exact expansion arithmetic.
+#[cold]
+#[inline(never)]
+fn insphere_near_degenerate(
+    &a: &[f64; 3],
+    &b: &[f64; 3],
+    &c: &[f64; 3],
+    &d: &[f64; 3],
+    &e: &[f64; 3],
+) -> f64 {
+    if let Some(det) = insphere_dd(a, b, c, d, e) {
+        return det;
     }
+    if let Some(det) = insphere_small_integers(a, b, c, d, e) {
+        return det;
+    }
+    insphere(a, b, c, d, e)
+}
+
+/// The exact insphere determinant when the twelve coordinate differences are exact and, after
+/// one common power-of-two scaling, integers below `2^21` (lattices, dyadic grids, cube
+/// corners and midpoints: the exactly cospherical inputs where the determinant is 0 and no
+/// filter can decide). In `i128` every term is below `2^112`, so nothing overflows. `None`
+/// otherwise. Only the sign of the result is meaningful.
+pub(super) fn insphere_small_integers(
+    a: [f64; 3],
+    b: [f64; 3],
+    c: [f64; 3],
+    d: [f64; 3],
+    e: [f64; 3],
+) -> Option<f64> {
+    let mut diffs = [0.0f64; 12];
+    let mut m = 0.0f64;
+    for (i, p) in [a, b, c, d].iter().enumerate() {
+        for k in 0..3 {
+            let t = two_sum(p[k], -e[k]);
+            if t.lo != 0.0 {
+                return None;
+            }
+            diffs[3 * i + k] = t.hi;
+            m = m.max(t.hi.abs());
+        }
+    }
+    if m == 0.0 || !m.is_finite() {
+        return (m == 0.0).then_some(0.0);
+    }
+    // scale = 2^(21 − ⌈log2 m⌉): m · scale lies in [2^20, 2^21].
+    let exp = ((m.to_bits() >> 52) & 0x7ff) as i32 - 1022;
+    let shift = 21 - exp;
+    if !(-1000..=1000).contains(&shift) {
+        return None;
+    }
+    let scale = 2f64.powi(shift);
+    let mut v = [0i128; 12];
+    for (x, out) in diffs.iter().zip(&mut v) {
+        let y = x * scale;
+        if y != y.trunc() || y.abs() > (1u64 << 21) as f64 {
+            return None;
+        }
+        *out = y as i128;
+    }
+    let [aex, aey, aez, bex, bey, bez, cex, cey, cez, dex, dey, dez] = v;
+    let ab = aex * bey - bex * aey;
+    let bc = bex * cey - cex * bey;
+    let cd = cex * dey - dex * cey;
+    let da = dex * aey - aex * dey;
+    let ac = aex * cey - cex * aey;
+    let bd = bex * dey - dex * bey;
+    let abc = aez * bc - bez * ac + cez * ab;
+    let bcd = bez * cd - cez * bd + dez * bc;
+    let cda = cez * da + dez * ac + aez * cd;
+    let dab = dez * ab + aez * bd + bez * da;
+    let alift = aex * aex + aey * aey + aez * aez;
+    let blift = bex * bex + bey * bey + bez * bez;
+    let clift = cex * cex + cey * cey + cez * cez;
+    let dlift = dex * dex + dey * dey + dez * dez;
+    let det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+    Some(det.signum() as f64)
+}
+
+/// A double-word number `hi + lo` with `|lo| <= ulp(hi) / 2`.
+#[derive(Clone, Copy)]
+struct Dd {
+    hi: f64,
+    lo: f64,
+}
+
+/// Knuth's TwoSum: `a + b = hi + lo` exactly.
+#[inline(always)]
+fn two_sum(a: f64, b: f64) -> Dd {
+    let hi = a + b;
+    let bb = hi - a;
+    Dd {
+        hi,
+        lo: (a - (hi - bb)) + (b - bb),
+    }
+}
+
+/// Dekker's Fast2Sum (`|a| >= |b|` or `a == 0`): `a + b = hi + lo` exactly.
+#[inline(always)]
+fn fast_two_sum(a: f64, b: f64) -> Dd {
+    let hi = a + b;
+    Dd {
+        hi,
+        lo: b - (hi - a),
+    }
+}
+
+/// Veltkamp's split of `a` into two 26-bit halves.
+#[inline(always)]
+fn split(a: f64) -> (f64, f64) {
+    let c = 134_217_729.0 * a;
+    let hi = c - (c - a);
+    (hi, a - hi)
+}
+
+/// Dekker's TwoProduct without FMA: `a · b = hi + lo` exactly (barring underflow/overflow).
+#[inline(always)]
+fn two_prod(a: f64, b: f64) -> Dd {
+    let p = a * b;
+    let (ah, al) = split(a);
+    let (bh, bl) = split(b);
+    Dd {
+        hi: p,
+        lo: ((ah * bh - p) + ah * bl + al * bh) + al * bl,
+    }
+}
+
+impl Dd {
+    /// AccurateDWPlusDW (Joldes, Muller, Popescu, ACM TOMS 2017, Alg. 6): relative error
+    /// below `3u²/(1 − 4u)`, `u = 2⁻⁵³`, for all inputs.
+    #[inline(always)]
+    fn add(self, y: Dd) -> Dd {
+        let s = two_sum(self.hi, y.hi);
+        let t = two_sum(self.lo, y.lo);
+        let v = fast_two_sum(s.hi, s.lo + t.hi);
+        fast_two_sum(v.hi, t.lo + v.lo)
+    }
+
+    #[inline(always)]
+    fn sub(self, y: Dd) -> Dd {
+        self.add(Dd {
+            hi: -y.hi,
+            lo: -y.lo,
+        })
+    }
+
+    /// DWTimesDW1 (same paper, Alg. 10): relative error below `7u²`.
+    #[inline(always)]
+    fn mul(self, y: Dd) -> Dd {
+        let c = two_prod(self.hi, y.hi);
+        let cl2 = self.hi * y.lo + self.lo * y.hi;
+        fast_two_sum(c.hi, c.lo + cl2)
+    }
+}
+
+/// The sign of Shewchuk's insphere determinant evaluated in double-double, or `None` when that
+/// evaluation cannot certify it.
+///
+/// The coordinate differences are exact (TwoSum); every later operation has relative error
+/// at most `δ = 7u²` (see [`Dd`]), and no path through the formula (Shewchuk's arrangement)
+/// has more than 8 operations, so the computed value is within `γ₈ = 8δ/(1 − 8δ) < 57u²` times
+/// the permanent of the exact value (the same formula in absolute values). The permanent is at
+/// most `24 · mx · my · mz · (mx² + my² + mz²)` (see [`insphere_fast`]); `1e-28` times that
+/// product leaves a factor of six over `24 · 57u²`. Underflow and overflow, which void the
+/// error-free transformations, are excluded by requiring every axis' largest difference to lie
+/// in `[1e-20, 1e20]`: any underflowed partial product is then below `1e-240`, far beneath the
+/// bound, and nothing can overflow.
+pub(super) fn insphere_dd(
+    a: [f64; 3],
+    b: [f64; 3],
+    c: [f64; 3],
+    d: [f64; 3],
+    e: [f64; 3],
+) -> Option<f64> {
+    let diff = |p: [f64; 3], k: usize| two_sum(p[k], -e[k]);
+    let [aex, bex, cex, dex] = [a, b, c, d].map(|p| diff(p, 0));
+    let [aey, bey, cey, dey] = [a, b, c, d].map(|p| diff(p, 1));
+    let [aez, bez, cez, dez] = [a, b, c, d].map(|p| diff(p, 2));
+    let max = |v: [Dd; 4]| v.iter().fold(0.0f64, |m, x| m.max(x.hi.abs()));
+    let (mx, my, mz) = (
+        max([aex, bex, cex, dex]),
+        max([aey, bey, cey, dey]),
+        max([aez, bez, cez, dez]),
+    );
+    if ![mx, my, mz].iter().all(|&m| (1e-20..=1e20).contains(&m)) {
+        return None;
+    }
+    let ab = aex.mul(bey).sub(bex.mul(aey));
+    let bc = bex.mul(cey).sub(cex.mul(bey));
+    let cd = cex.mul(dey).sub(dex.mul(cey));
+    let da = dex.mul(aey).sub(aex.mul(dey));
+    let ac = aex.mul(cey).sub(cex.mul(aey));
+    let bd = bex.mul(dey).sub(dex.mul(bey));
+    let abc = aez.mul(bc).sub(bez.mul(ac)).add(cez.mul(ab));
+    let bcd = bez.mul(cd).sub(cez.mul(bd)).add(dez.mul(bc));
+    let cda = cez.mul(da).add(dez.mul(ac)).add(aez.mul(cd));
+    let dab = dez.mul(ab).add(aez.mul(bd)).add(bez.mul(da));
+    let lift = |x: Dd, y: Dd, z: Dd| x.mul(x).add(y.mul(y)).add(z.mul(z));
+    let alift = lift(aex, aey, aez);
+    let blift = lift(bex, bey, bez);
+    let clift = lift(cex, cey, cez);
+    let dlift = lift(dex, dey, dez);
+    let det = dlift
+        .mul(abc)
+        .sub(clift.mul(dab))
+        .add(blift.mul(cda).sub(alift.mul(bcd)));
+    // The differences' low parts add at most a relative u to each maximum (covered by the
+    // factor-six margin, as is the rounding of this product).
+    let bound = 1e-28 * (mx * my * mz) * (mx * mx + my * my + mz * mz);
+    // |lo| <= u |hi|, so |hi| > 2 · bound puts the double-double value beyond the bound too.
+    (det.hi.abs() > 2.0 * bound).then_some(det.hi)
 }
 
 /// Asks the CPU to start loading `r` into the cache (a hint; no effect on the program's
@@ -236,18 +465,32 @@ fn prefetch<T>(r: &T) {
     let _ = r;
 }
 
+/// The ghost half of [`conflict_in`], kept out of line: ghosts are few, and inlining their
+/// test would crowd the hot loop.
+#[inline(never)]
+fn ghost_conflict_in(pts: &[[f64; 3]], v: [VertexId; 4], p: [f64; 3]) -> bool {
+    let k = v.iter().position(|&x| x == GHOST).unwrap_or(0);
+    let [a, b, c] = FACE[k].map(|i| pts[v[i] as usize]);
+    ghost_conflict(a, b, c, p)
+}
+
 /// The conflict rule of [`Tets::conflict`] on the raw arrays (the cavity search's hot path).
 #[inline(always)]
 fn conflict_in(tets: &[Tet], pts: &[[f64; 3]], t: usize, p: [f64; 3]) -> bool {
     let v = tets[t].v;
     if v[0] == GHOST || v[1] == GHOST || v[2] == GHOST || v[3] == GHOST {
-        let k = v.iter().position(|&x| x == GHOST).unwrap_or(0);
-        let [a, b, c] = FACE[k].map(|i| pts[v[i] as usize]);
-        return ghost_conflict(a, b, c, p);
+        return ghost_conflict_in(pts, v, p);
     }
     let [a, b, c, d] = v.map(|x| pts[x as usize]);
-    // Real tets have orient3d < 0, which flips Shewchuk's insphere sign.
-    insphere_fast(a, b, c, d, p) < 0.0
+    // Real tets have orient3d < 0, which flips Shewchuk's insphere sign. The slow path reads
+    // the points again, so that the hot path never has to keep copies of them in memory.
+    match insphere_filter(a, b, c, d, p) {
+        Some(det) => det < 0.0,
+        None => {
+            let [a, b, c, d] = v.map(|x| &pts[x as usize]);
+            insphere_near_degenerate(a, b, c, d, &p) < 0.0
+        }
+    }
 }
 
 impl Tets {
@@ -586,8 +829,11 @@ impl Tets {
     }
 
     /// Replaces the pending cavity by the tets joining `v` to each boundary face, and returns
-    /// the new tets (valid until the next call that changes the store). `v`'s point must be the
-    /// point given to [`Tets::find_cavity`]. Updates the vertex-to-tet map.
+    /// the new tets (valid until the next call that changes the store): new tet `k` is
+    /// `[v, a, b, c]` on boundary face `k` of [`Tets::cavity_boundary`] (its face 0, opposite
+    /// `v`, is that face; ghosts among them have [`GHOST`] in place of one of `a, b, c`).
+    /// `v`'s point must be the point given to [`Tets::find_cavity`]. Updates the vertex-to-tet
+    /// map. Slots of the cavity's tets are recycled.
     pub fn commit_cavity(&mut self, v: VertexId) -> &[TetId] {
         debug_assert!(self.pending, "commit_cavity without find_cavity");
         debug_assert!(
@@ -794,7 +1040,8 @@ impl Tets {
     pub fn find_edge(&self, a: VertexId, b: VertexId) -> Option<TetId> {
         let mut star = Vec::with_capacity(64);
         self.star(a, &mut star);
-        star.into_iter().find(|&t| self.tets[t as usize].v.contains(&b))
+        star.into_iter()
+            .find(|&t| self.tets[t as usize].v.contains(&b))
     }
 
     /// A half-face `4t + f` whose face has the vertices `a, b, c` (in any order): `t` contains
@@ -820,7 +1067,7 @@ impl Tets {
 /// circumcircle. Exact.
 #[inline]
 pub fn ghost_conflict(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3]) -> bool {
-    let o = orient3d(a, b, c, p);
+    let o = orient3d_fast(a, b, c, p);
     if o != 0.0 {
         return o > 0.0;
     }
@@ -848,9 +1095,9 @@ pub fn in_circumcircle_coplanar(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 
     for k in axes {
         let mut q = a;
         q[k] = a[k] + a[k].abs().max(1.0);
-        let o = orient3d(a, b, c, q);
+        let o = orient3d_fast(a, b, c, q);
         if o != 0.0 {
-            let s = insphere(a, b, c, q, p);
+            let s = insphere_fast(a, b, c, q, p);
             return if o > 0.0 { s > 0.0 } else { s < 0.0 };
         }
     }

@@ -31,7 +31,9 @@ fn check_mesh(m: &TetMesh) -> Result<(), String> {
             return Err(format!("subface {i} repeats a vertex"));
         }
         if !faces.contains(*f) {
-            return Err(format!("subface {i} {f:?} is not a face of any tetrahedron"));
+            return Err(format!(
+                "subface {i} {f:?} is not a face of any tetrahedron"
+            ));
         }
     }
     check_empty_spheres(m)
@@ -64,7 +66,9 @@ fn check_lengths(m: &TetMesh) -> Result<(), String> {
     }
     for (i, e) in m.edges.iter().enumerate() {
         if e.iter().any(|&v| v as usize >= nv) || e[0] == e[1] {
-            return Err(format!("subsegment {i} {e:?} is not a pair of distinct vertices"));
+            return Err(format!(
+                "subsegment {i} {e:?} is not a pair of distinct vertices"
+            ));
         }
     }
     Ok(())
@@ -183,7 +187,8 @@ impl FaceIndex {
 
     fn contains(&self, mut f: [u32; 3]) -> bool {
         f.sort_unstable();
-        let group = &self.keys[self.start[f[0] as usize] as usize..self.start[f[0] as usize + 1] as usize];
+        let group =
+            &self.keys[self.start[f[0] as usize] as usize..self.start[f[0] as usize + 1] as usize];
         group
             .binary_search(&(((f[1] as u64) << 32) | f[2] as u64))
             .is_ok()
@@ -199,8 +204,13 @@ struct Grid3 {
     /// wider), so no point is dropped from a query by an ulp.
     tol: [f64; 3],
     g: usize,
+    /// Cell `(x, y, z)` is number `(x·g + y)·g + z`, so a column of cells along z is one
+    /// contiguous run of items.
     start: Vec<u32>,
+    /// Vertex ids, cell by cell, and their coordinates alongside (a query then reads memory
+    /// in order instead of chasing ids into the vertex array).
     items: Vec<u32>,
+    coords: Vec<[f64; 3]>,
 }
 
 impl Grid3 {
@@ -212,7 +222,8 @@ impl Grid3 {
                 hi[k] = hi[k].max(p[k]);
             }
         }
-        let g = ((pts.len() as f64).cbrt().ceil() as usize).clamp(1, 320);
+        // About half a point per cell: a typical circumsphere then meets a few dozen cells.
+        let g = ((2.0 * pts.len() as f64).cbrt().ceil() as usize).clamp(1, 400);
         let w = [0, 1, 2].map(|k| ((hi[k] - lo[k]) / g as f64).max(f64::MIN_POSITIVE));
         let tol = [0, 1, 2].map(|k| 1e-9 * w[k] + 1e-14 * (lo[k].abs() + hi[k].abs()));
         let mut grid = Grid3 {
@@ -222,6 +233,7 @@ impl Grid3 {
             g,
             start: vec![0; g * g * g + 1],
             items: vec![0; pts.len()],
+            coords: vec![[0.0; 3]; pts.len()],
         };
         for p in pts {
             let c = grid.cell_of(*p);
@@ -234,22 +246,24 @@ impl Grid3 {
         for (v, p) in pts.iter().enumerate() {
             let c = grid.cell_of(*p);
             grid.items[fill[c] as usize] = v as u32;
+            grid.coords[fill[c] as usize] = *p;
             fill[c] += 1;
         }
         grid
     }
 
     fn cell(&self, x: f64, k: usize) -> usize {
-        let c = ((x - self.lo[k]) / self.w[k]).floor();
-        if c.is_nan() || c < 0.0 {
-            0
-        } else {
+        let c = (x - self.lo[k]) / self.w[k];
+        // Truncation is floor for c >= 0; NaN and negatives clamp to cell 0.
+        if c >= 0.0 {
             (c as usize).min(self.g - 1)
+        } else {
+            0
         }
     }
 
     fn cell_of(&self, p: [f64; 3]) -> usize {
-        (self.cell(p[2], 2) * self.g + self.cell(p[1], 1)) * self.g + self.cell(p[0], 0)
+        (self.cell(p[0], 0) * self.g + self.cell(p[1], 1)) * self.g + self.cell(p[2], 2)
     }
 
     /// Squared distance from `x` to the interval of cell `i` along axis `k` (0 inside).
@@ -274,27 +288,34 @@ impl Grid3 {
         &self,
         c: [f64; 3],
         r: f64,
-        mut f: impl FnMut(u32) -> Result<(), String>,
+        mut f: impl FnMut(u32, [f64; 3]) -> Result<(), String>,
     ) -> Result<(), String> {
         let r2 = r * r;
         let t = self.tol;
         let (x0, x1) = (self.cell(c[0] - r - t[0], 0), self.cell(c[0] + r + t[0], 0));
         let (y0, y1) = (self.cell(c[1] - r - t[1], 1), self.cell(c[1] + r + t[1], 1));
         for x in x0..=x1 {
-            let dx = if x == 0 || x == self.g - 1 { 0.0 } else { self.gap2(c[0], x, 0) };
+            let dx = if x == 0 || x == self.g - 1 {
+                0.0
+            } else {
+                self.gap2(c[0], x, 0)
+            };
             for y in y0..=y1 {
-                let dy = if y == 0 || y == self.g - 1 { 0.0 } else { self.gap2(c[1], y, 1) };
+                let dy = if y == 0 || y == self.g - 1 {
+                    0.0
+                } else {
+                    self.gap2(c[1], y, 1)
+                };
                 let rest = r2 - dx - dy;
                 if rest < 0.0 {
                     continue;
                 }
                 let h = rest.sqrt() * (1.0 + 1e-12) + t[2];
-                for z in self.cell(c[2] - h, 2)..=self.cell(c[2] + h, 2) {
-                    let cell = (z * self.g + y) * self.g + x;
-                    for &v in &self.items[self.start[cell] as usize..self.start[cell + 1] as usize]
-                    {
-                        f(v)?;
-                    }
+                let column = (x * self.g + y) * self.g;
+                let first = self.start[column + self.cell(c[2] - h, 2)] as usize;
+                let end = self.start[column + self.cell(c[2] + h, 2) + 1] as usize;
+                for (&v, &q) in self.items[first..end].iter().zip(&self.coords[first..end]) {
+                    f(v, q)?;
                 }
             }
         }
@@ -319,8 +340,7 @@ fn check_empty_spheres(m: &TetMesh) -> Result<(), String> {
             Some((center, r)) => (center, r * r * (1.0 + 1e-9)),
             None => ([0.0; 3], f64::INFINITY),
         };
-        let test = |w: u32| {
-            let q = p(w);
+        let test = |w: u32, q: [f64; 3]| {
             if dist2_3(center, q) > reach2 {
                 return Ok(());
             }
@@ -335,7 +355,7 @@ fn check_empty_spheres(m: &TetMesh) -> Result<(), String> {
         };
         match query {
             Some((center, r)) => grid.for_each_in_ball(center, r, test)?,
-            None => (0..m.vertices.len() as u32).try_for_each(test)?,
+            None => (0..m.vertices.len() as u32).try_for_each(|w| test(w, p(w)))?,
         }
     }
     Ok(())
@@ -454,7 +474,9 @@ impl Tets {
                 continue;
             }
             if t as usize >= self.num_slots() || !self.alive(t) || !self.verts(t).contains(&v) {
-                return Err(format!("vertex {v}'s tet {t} is dead or does not contain it"));
+                return Err(format!(
+                    "vertex {v}'s tet {t} is dead or does not contain it"
+                ));
             }
         }
         Ok(())

@@ -438,7 +438,10 @@ fn cross(u: [f64; 3], w: [f64; 3]) -> [f64; 3] {
 }
 
 /// Everything observable about the store's tets, slot by slot.
-fn snapshot(t: &Tets) -> Vec<([u32; 4], [(u32, usize); 4])> {
+/// One tet's vertices and neighbour half-faces.
+type TetRecord = ([u32; 4], [(u32, usize); 4]);
+
+fn snapshot(t: &Tets) -> Vec<TetRecord> {
     (0..t.num_slots() as u32)
         .map(|s| {
             if t.alive(s) {
@@ -522,8 +525,8 @@ fn locate_finds_vertices_inside_and_outside_points() {
     };
     assert!(!tets.is_ghost(t));
     let v = tets.verts(t);
-    for f in 0..4 {
-        let [a, b, c] = FACE[f].map(|i| tets.point(v[i]));
+    for face in FACE {
+        let [a, b, c] = face.map(|i| tets.point(v[i]));
         assert!(orient3d(a, b, c, p) >= 0.0);
     }
     // A dead or out-of-range hint is tolerated.

@@ -90,6 +90,7 @@ fn check_tets(m: &TetMesh) -> Result<(), String> {
         }
     }
     for (t, tv) in m.tets.iter().enumerate() {
+        #[allow(clippy::needless_range_loop)] // i indexes the neighbours and FACE alike
         for i in 0..4 {
             let n = m.neighbors[t][i];
             if n == NONE {

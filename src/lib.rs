@@ -24,6 +24,7 @@ pub mod exact;
 pub mod ffi;
 pub mod ffi3d;
 pub mod geometry;
+mod hash;
 pub mod input;
 pub mod input3d;
 pub mod io;

@@ -9,7 +9,7 @@
 //! triangle's corners cuts the plane in its circumcircle, so the facet mesh and the 3D mesh see
 //! the same circles for coplanar points (paper §6: no rounded map into the plane).
 
-use std::collections::HashMap;
+use crate::hash::FastMap as HashMap;
 
 use crate::predicates::{in_diametral_ball_seg3, incircle3d, orient2d};
 
@@ -134,7 +134,7 @@ impl FacetMesh {
             alive: Vec::new(),
             inside: Vec::new(),
             free: Vec::new(),
-            vtri: HashMap::new(),
+            vtri: HashMap::default(),
             outline,
             stamp: Vec::new(),
             cur: 0,

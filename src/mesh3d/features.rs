@@ -2,7 +2,7 @@
 //! (subsegments), facets with their outlines, and the lookup tables from mesh simplices to the
 //! features they belong to.
 
-use std::collections::HashMap;
+use crate::hash::FastMap as HashMap;
 
 use super::facet_mesh::Outline;
 use crate::input3d::Plc;
@@ -111,7 +111,7 @@ impl Features {
             add_edge(s[0], s[1], m, None);
         }
         let mut facets = Vec::with_capacity(plc.facets.len());
-        let mut vert_facets: HashMap<u32, Vec<u32>> = HashMap::new();
+        let mut vert_facets: HashMap<u32, Vec<u32>> = HashMap::default();
         for (fi, f) in plc.facets.iter().enumerate() {
             let fid = fi as u32;
             let mut verts: Vec<u32> = f.polygons.iter().flatten().copied().collect();
@@ -169,7 +169,7 @@ impl Features {
         // the pieces are the input edges, each with the union of the facets around it.
         let on_edges = vertices_on_edges(&plc.points, &raw);
         let mut edges: Vec<InputEdge> = Vec::new();
-        let mut subsegs: HashMap<u64, u32> = HashMap::new();
+        let mut subsegs: HashMap<u64, u32> = HashMap::default();
         for (r, &(a, b, marker, facet)) in raw.iter().enumerate() {
             let mut chain = vec![a];
             chain.extend(on_edges[r].iter().copied());
@@ -205,7 +205,7 @@ impl Features {
             }
         }
         let mut on_feature = vec![false; n];
-        let mut seg_adj: HashMap<u32, Vec<u32>> = HashMap::new();
+        let mut seg_adj: HashMap<u32, Vec<u32>> = HashMap::default();
         for e in &edges {
             let [a, b] = e.ends;
             on_feature[a as usize] = true;
@@ -221,9 +221,9 @@ impl Features {
             facets,
             subsegs,
             seg_adj,
-            subfaces: HashMap::new(),
+            subfaces: HashMap::default(),
             vert_facets,
-            split_edge: HashMap::new(),
+            split_edge: HashMap::default(),
             on_feature,
         })
     }

@@ -28,6 +28,13 @@ const MAX_TET_SLOTS: usize = (1 << 30) - 1024;
 /// Region id of tetrahedra outside the domain (exterior or holes).
 const OUTSIDE: u32 = u32::MAX;
 
+/// Region id of tetrahedra made while a subface was missing from the 3D mesh: their region is
+/// found once conformity is restored (see [`Mesher::resolve_unknown`]).
+const UNKNOWN: u32 = u32::MAX - 1;
+
+/// Scratch mark of tetrahedra in the component being resolved.
+const RESOLVING: u32 = u32::MAX - 2;
+
 /// A simplex a refused point encroaches (to be split before retrying).
 #[derive(Debug, Clone, Copy)]
 enum Enc {
@@ -40,9 +47,11 @@ struct Mesher<'a> {
     plc: &'a Plc,
     /// Squared size floor for quality work (see `below_floor`).
     floor2: f64,
-    /// A cavity crossed a subface of a facet the new point is not on: inherited regions may
-    /// be wrong until the next classification.
+    /// A cavity crossed a subface of a facet the new point is not on: until conformity is
+    /// restored, new tetrahedra get the region [`UNKNOWN`] (inheriting a region across the
+    /// missing subface could be wrong) and are listed in `unknown`.
     dirty: bool,
+    unknown: Vec<u32>,
     pts: Vec<[f64; 3]>,
     tets: Tets,
     feat: Features,
@@ -63,6 +72,10 @@ struct Mesher<'a> {
     sharp: Sharp,
     /// Scratch: (sorted boundary face, region of the cavity tet behind it).
     face_region: Vec<([u32; 3], u32)>,
+    /// Scratch buffers of `insert3d`, kept to avoid allocating per insertion.
+    scratch_segs: Vec<[u32; 2]>,
+    scratch_faces: Vec<([u32; 3], u32)>,
+    scratch_new: Vec<u32>,
 }
 
 /// Meshes a PLC (already checked).
@@ -101,6 +114,7 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
             d2 * 2f64.powi(-72)
         },
         dirty: false,
+        unknown: Vec::new(),
         pts: plc.points.clone(),
         tets,
         feat,
@@ -117,6 +131,9 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
         complete: true,
         sharp: Sharp::default(),
         face_region: Vec::new(),
+        scratch_segs: Vec::new(),
+        scratch_faces: Vec::new(),
+        scratch_new: Vec::new(),
     };
     m.sharp = Sharp::find(plc, &m.feat);
     m.insert_input_points()?;
@@ -129,18 +146,18 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
     m.run()?;
     m.classify(plc)?;
     if m.wants_quality() {
-        // Late facet splits may move region borders (new tets inherit their region from the
-        // cavity, which can be wrong next to a split facet): classify again and repeat until
-        // no tet inside is left bad.
+        for t in 0..m.tets.num_slots() as u32 {
+            m.maybe_queue_tet(t);
+        }
+        m.run()?;
+        // Regions are tracked through refinement (inherited from the cavity, or resolved
+        // after conformity was restored); a full classification checks that and requeues any
+        // tet whose region it corrects. It should find none; the rounds are a safety net.
         for _round in 0..8 {
-            for t in 0..m.tets.num_slots() as u32 {
-                m.maybe_queue_tet(t);
-            }
-            if m.tet_q.is_empty() || !m.complete {
+            if m.reclassify()? == 0 || !m.complete {
                 break;
             }
             m.run()?;
-            m.classify(plc)?;
         }
     }
     m.output(plc)
@@ -247,19 +264,15 @@ impl Mesher<'_> {
             Located::InTet(t) => t,
             Located::Vertex(_) => return Err(Vec::new()),
         };
-        if std::env::var("IDM_DBG3").is_ok() {
-            eprintln!(
-                "insert3d {v} {p:?} provisional {provisional} slots {}",
-                self.tets.num_slots()
-            );
-        }
         if !self.tets.find_cavity(p, start) {
             self.tets.cancel_cavity();
             return Err(Vec::new());
         }
         let mut enc: Vec<Enc> = Vec::new();
-        let mut touched_segs: Vec<[u32; 2]> = Vec::new();
-        let mut touched_faces: Vec<([u32; 3], u32)> = Vec::new();
+        let mut touched_segs = std::mem::take(&mut self.scratch_segs);
+        let mut touched_faces = std::mem::take(&mut self.scratch_faces);
+        touched_segs.clear();
+        touched_faces.clear();
         self.face_region.clear();
         for &t in self.tets.cavity() {
             let vs = self.tets.verts(t);
@@ -310,6 +323,8 @@ impl Mesher<'_> {
         }
         if provisional && !enc.is_empty() {
             self.tets.cancel_cavity();
+            self.scratch_segs = touched_segs;
+            self.scratch_faces = touched_faces;
             return Err(enc);
         }
         self.face_region.sort_unstable();
@@ -318,30 +333,41 @@ impl Mesher<'_> {
             let q = self.pts[self.tets.num_vertices()];
             self.tets.push_vertex(q);
         }
-        let new = self.tets.commit_cavity(v).to_vec();
+        let mut new = std::mem::take(&mut self.scratch_new);
+        new.clear();
+        new.extend_from_slice(self.tets.commit_cavity(v));
         if let Some(&t) = new.first() {
             self.hint = t;
         }
-        for s in touched_segs {
+        for &s in &touched_segs {
             self.seg_q.push_back((s, false));
         }
-        for (f, fid) in touched_faces {
+        for &(f, fid) in &touched_faces {
             self.face_q.push_back((f, fid, false));
         }
         if self.classified {
             for &t in &new {
                 let vs = self.tets.verts(t);
-                let k = (0..4).find(|&k| vs[k] == v).unwrap_or(0);
-                let key = fkey(face_of(vs, k));
-                let reg = match self.face_region.binary_search_by(|e| e.0.cmp(&key)) {
-                    Ok(i) => self.face_region[i].1,
-                    Err(_) => OUTSIDE,
+                let reg = if vs.contains(&GHOST) {
+                    OUTSIDE
+                } else if self.dirty {
+                    self.unknown.push(t);
+                    UNKNOWN
+                } else {
+                    let k = (0..4).find(|&k| vs[k] == v).unwrap_or(0);
+                    let key = fkey(face_of(vs, k));
+                    match self.face_region.binary_search_by(|e| e.0.cmp(&key)) {
+                        Ok(i) => self.face_region[i].1,
+                        Err(_) => OUTSIDE,
+                    }
                 };
-                let reg = if vs.contains(&GHOST) { OUTSIDE } else { reg };
                 self.set_region(t, reg);
                 self.maybe_queue_tet(t);
             }
         }
+        self.scratch_segs = touched_segs;
+        self.scratch_faces = touched_faces;
+        self.scratch_new = new;
         Ok(())
     }
 
@@ -402,12 +428,10 @@ impl Mesher<'_> {
             } else if let Some((f, fid, force)) = self.face_q.pop_front() {
                 self.take_subface(f, fid, force)?;
             } else if self.dirty && self.classified {
-                // Conformity is restored: fix the regions before judging tets again.
+                // Conformity is restored: find the regions of the tets made meanwhile before
+                // judging tets again.
                 self.dirty = false;
-                self.classify(self.plc)?;
-                for t in 0..self.tets.num_slots() as u32 {
-                    self.maybe_queue_tet(t);
-                }
+                self.resolve_unknown()?;
             } else if let Some((t, vs)) = self.tet_q.pop_front() {
                 if self.cap_reached() {
                     self.complete = false;
@@ -629,7 +653,7 @@ impl Mesher<'_> {
     }
 
     fn maybe_queue_tet(&mut self, t: u32) {
-        if !self.tets.alive(t) || self.tets.is_ghost(t) || self.region_of(t) == OUTSIDE {
+        if !self.tets.alive(t) || self.tets.is_ghost(t) || self.region_of(t) >= UNKNOWN {
             return;
         }
         if self.is_bad(t) {
@@ -638,7 +662,7 @@ impl Mesher<'_> {
     }
 
     fn take_tet(&mut self, t: u32, vs: [u32; 4]) -> Result<(), Error> {
-        if !self.tets.alive(t) || self.tets.verts(t) != vs || self.region_of(t) == OUTSIDE {
+        if !self.tets.alive(t) || self.tets.verts(t) != vs || self.region_of(t) >= UNKNOWN {
             return Ok(());
         }
         let c = vs.map(|x| self.pts[x as usize]);
@@ -672,6 +696,81 @@ impl Mesher<'_> {
                 Ok(())
             }
         }
+    }
+
+    /// Gives the tets made while conformity was broken (region [`UNKNOWN`]) their region, now
+    /// that every subface is back in the 3D mesh: each connected group of them (across
+    /// non-subfaces) takes the region of the known tets next to it, which regions cannot
+    /// cross. A group with no known neighbour, or with neighbours that disagree, falls back on
+    /// a full classification. Then the resolved tets are judged for quality.
+    fn resolve_unknown(&mut self) -> Result<(), Error> {
+        let list = std::mem::take(&mut self.unknown);
+        let mut comp = Vec::new();
+        let mut stack = Vec::new();
+        for &s in &list {
+            if !self.tets.alive(s) || self.region_of(s) != UNKNOWN {
+                continue;
+            }
+            comp.clear();
+            self.set_region(s, RESOLVING);
+            stack.push(s);
+            let mut found = None;
+            let mut agree = true;
+            while let Some(t) = stack.pop() {
+                comp.push(t);
+                let vs = self.tets.verts(t);
+                for f in 0..4 {
+                    if self.feat.subface(face_of(vs, f)).is_some() {
+                        continue;
+                    }
+                    let (n, _) = self.tets.neighbor(t, f);
+                    match self.region_of(n) {
+                        UNKNOWN => {
+                            self.set_region(n, RESOLVING);
+                            stack.push(n);
+                        }
+                        RESOLVING => {}
+                        r => match found {
+                            None => found = Some(r),
+                            Some(x) => agree &= x == r,
+                        },
+                    }
+                }
+            }
+            match found {
+                Some(r) if agree => {
+                    for &t in &comp {
+                        self.set_region(t, r);
+                    }
+                }
+                _ => {
+                    for &t in &comp {
+                        self.set_region(t, UNKNOWN);
+                    }
+                    self.reclassify()?;
+                    break;
+                }
+            }
+        }
+        for t in list {
+            self.maybe_queue_tet(t);
+        }
+        Ok(())
+    }
+
+    /// Classifies every tet again and queues those whose region changed; returns how many.
+    fn reclassify(&mut self) -> Result<usize, Error> {
+        let old = std::mem::take(&mut self.region);
+        self.classify(self.plc)?;
+        self.unknown.clear();
+        let mut changed = 0;
+        for t in 0..self.tets.num_slots() as u32 {
+            if self.tets.alive(t) && old.get(t as usize) != Some(&self.region[t as usize]) {
+                changed += 1;
+                self.maybe_queue_tet(t);
+            }
+        }
+        Ok(changed)
     }
 
     /// Floods regions: outside from the ghosts and hole seeds, then region seeds; the rest is
@@ -806,22 +905,19 @@ impl Mesher<'_> {
             Vec::new()
         };
         // Subfaces with the domain on at least one side (a facet between two holes is not
-        // part of the mesh).
-        let mut bounding = std::collections::HashSet::new();
+        // part of the mesh): the subfaces among the faces of the output tets.
+        let mut faces: Vec<([u32; 3], u32)> = Vec::new();
         for &t in &slots {
             let vs = self.tets.verts(t);
             for f in 0..4 {
-                bounding.insert(fkey(face_of(vs, f)));
+                let fv = face_of(vs, f);
+                if let Some(fid) = self.feat.subface(fv) {
+                    faces.push((fkey(fv), fid));
+                }
             }
         }
-        let mut faces: Vec<([u32; 3], u32)> = self
-            .feat
-            .subfaces
-            .iter()
-            .filter(|(k, _)| bounding.contains(*k))
-            .map(|(k, &f)| (*k, f))
-            .collect();
         faces.sort_unstable();
+        faces.dedup();
         let face_markers: Vec<i32> = faces
             .iter()
             .map(|&(_, f)| self.feat.facets[f as usize].marker)
@@ -926,11 +1022,11 @@ fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
 #[derive(Default)]
 struct Sharp {
     /// Input vertices where two input edges meet below 60°.
-    vertices: std::collections::HashSet<u32>,
+    vertices: crate::hash::FastSet<u32>,
     /// Input edges along which two facets meet below 60°.
-    edges: std::collections::HashSet<u32>,
+    edges: crate::hash::FastSet<u32>,
     /// Facet pairs (smaller id first) meeting below 60° along an edge or at a vertex.
-    facet_pairs: std::collections::HashSet<(u32, u32)>,
+    facet_pairs: crate::hash::FastSet<(u32, u32)>,
 }
 
 impl Sharp {

@@ -266,6 +266,23 @@ impl Features {
             .all(|v| ends.contains(v) || self.split_edge.get(v) == Some(e))
     }
 
+    /// Whether the four vertices all lie on one facet: in exact arithmetic such a tet would be
+    /// flat; with Steiner points rounded off a slanted facet it is a rounding sliver lying in
+    /// the facet, which no refinement can improve (its circumcenter is far away).
+    pub fn in_one_facet(&self, t: [u32; 4]) -> bool {
+        if !t.iter().all(|&v| self.is_feature(v)) {
+            return false;
+        }
+        let Some(f0) = self.vert_facets.get(&t[0]) else {
+            return false;
+        };
+        f0.iter().any(|f| {
+            t[1..]
+                .iter()
+                .all(|v| self.vert_facets.get(v).is_some_and(|fs| fs.contains(f)))
+        })
+    }
+
     /// Whether `v` lies on a feature.
     #[inline]
     pub fn is_feature(&self, v: u32) -> bool {

@@ -47,6 +47,8 @@ struct Mesher<'a> {
     plc: &'a Plc,
     /// Squared size floor for quality work (see `below_floor`).
     floor2: f64,
+    /// Bounding box of the input points (lowest and highest corner).
+    bbox: [[f64; 3]; 2],
     /// A cavity crossed a subface of a facet the new point is not on: until conformity is
     /// restored, new tetrahedra get the region [`UNKNOWN`] (inheriting a region across the
     /// missing subface could be wrong) and are listed in `unknown`.
@@ -99,20 +101,18 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
             )
         })
         .collect();
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for p in &plc.points {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
     let mut m = Mesher {
         opts,
         plc,
-        floor2: {
-            let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-            for p in &plc.points {
-                for k in 0..3 {
-                    lo[k] = lo[k].min(p[k]);
-                    hi[k] = hi[k].max(p[k]);
-                }
-            }
-            let d2 = crate::geometry::dist2_3(lo, hi);
-            d2 * 2f64.powi(-72)
-        },
+        floor2: crate::geometry::dist2_3(lo, hi) * 2f64.powi(-72),
+        bbox: [lo, hi],
         dirty: false,
         unknown: Vec::new(),
         pts: plc.points.clone(),
@@ -321,7 +321,10 @@ impl Mesher<'_> {
                 }
             }
         }
-        if provisional && !enc.is_empty() {
+        // A point outside the input's bounding box is outside the domain: in exact arithmetic
+        // it encroaches a subface and is refused above; should rounding let it slip past that
+        // test, it is refused all the same (inserting it would feed a runaway outside).
+        if provisional && (!enc.is_empty() || !self.in_box(p)) {
             self.tets.cancel_cavity();
             self.scratch_segs = touched_segs;
             self.scratch_faces = touched_faces;
@@ -404,6 +407,11 @@ impl Mesher<'_> {
             }
         }
         e2 < self.floor2
+    }
+
+    /// Whether `p` lies in the bounding box of the input points.
+    fn in_box(&self, p: [f64; 3]) -> bool {
+        (0..3).all(|k| self.bbox[0][k] <= p[k] && p[k] <= self.bbox[1][k])
     }
 
     fn cap_reached(&self) -> bool {
@@ -624,6 +632,9 @@ impl Mesher<'_> {
 
     fn is_bad(&self, t: u32) -> bool {
         let vs = self.tets.verts(t);
+        if self.feat.in_one_facet(vs) {
+            return false;
+        }
         let c = vs.map(|x| self.pts[x as usize]);
         if let Some(rho) = self.opts.radius_edge {
             if tet_radius_edge(c) > rho && !self.sharp.exempts(vs, &self.feat) {
@@ -684,7 +695,8 @@ impl Mesher<'_> {
             Err(enc) => {
                 self.pts.pop();
                 if enc.is_empty() {
-                    return Ok(()); // the circumcenter coincides with a vertex
+                    // The circumcenter coincides with a vertex, or lies outside the box.
+                    return Ok(());
                 }
                 for e in enc {
                     match e {

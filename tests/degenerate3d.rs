@@ -1,0 +1,648 @@
+//! Degenerate 3D inputs: cubes and grid-aligned boxes (every vertex set cospherical), boxes far
+//! from the origin and at tiny scale, cylinders over regular polygons, lattices of input points
+//! inside a cube and on its facets, and `delaunay3d` of lattices and cospherical point sets.
+//! Each must terminate, validate and conform, judged by the independent checker in `common3d`.
+//! The last tests corrupt meshes to show the checker does reject what it should.
+
+mod common3d;
+
+use std::time::Duration;
+
+use common3d::{
+    add_box, box_plc, check_delaunay, check_plc_mesh, check_point_mesh, mesh_and_check, prism_plc,
+    regular_polygon, tetgen_positive, with_timeout, Cell, Domain, Frame, Spec3, P3,
+};
+use idmesh::{delaunay3d, Facet, Options3, Plc, TetMesh};
+
+fn plain() -> Options3 {
+    Options3::default()
+}
+
+fn quality(b: f64) -> Options3 {
+    Options3 {
+        radius_edge: Some(b),
+        ..Options3::default()
+    }
+}
+
+fn quality_volume(b: f64, v: f64) -> Options3 {
+    Options3 {
+        radius_edge: Some(b),
+        max_volume: Some(v),
+        ..Options3::default()
+    }
+}
+
+fn box_spec(lo: P3, hi: P3) -> Spec3 {
+    Spec3 {
+        domain: Some(Domain {
+            cells: vec![Cell::cuboid(lo, hi, 0.0)],
+            frame: Frame::identity(),
+        }),
+        ..Spec3::default()
+    }
+}
+
+/// Meshes and checks under each option set; panics with the checker's message.
+fn run_all(plc: &Plc, spec: &Spec3, opts: &[Options3]) -> Vec<TetMesh> {
+    opts.iter()
+        .map(|o| match mesh_and_check(plc, o, spec) {
+            Ok((m, _)) => m,
+            Err(e) => panic!("{e}"),
+        })
+        .collect()
+}
+
+/// Checks a Delaunay tetrahedralization of `pts` (with a time limit).
+fn delaunay_ok(pts: Vec<P3>) -> TetMesh {
+    let p = pts.clone();
+    let mesh = with_timeout(Duration::from_secs(60), move || delaunay3d(&p))
+        .unwrap()
+        .unwrap_or_else(|e| panic!("delaunay3d failed: {e}"));
+    check_point_mesh(&pts, &mesh).unwrap();
+    mesh
+}
+
+// ----------------------------------------------------------------------------------- cubes
+
+#[test]
+fn orientation_convention() {
+    // det[b − a, c − a, d − a] = +1 for this tet: TetGen-positive, robust::orient3d negative.
+    let t = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+    ];
+    assert!(common3d::orient(t[0], t[1], t[2], t[3]) < 0.0);
+    assert!(tetgen_positive(t));
+    assert!(common3d::tet_volume(t) > 0.0);
+    assert!(!tetgen_positive([t[1], t[0], t[2], t[3]]));
+    // And the mesher's tets follow it.
+    let m = tetrahedralize_ok(&box_plc([0.0; 3], [1.0; 3]), &quality(2.0));
+    for t in 0..m.tets.len() {
+        assert!(tetgen_positive(m.corners(t)));
+        assert!(common3d::tet_volume(m.corners(t)) > 0.0);
+    }
+}
+
+fn tetrahedralize_ok(plc: &Plc, o: &Options3) -> TetMesh {
+    idmesh::tetrahedralize(plc, o).unwrap()
+}
+
+#[test]
+fn unit_cube() {
+    let plc = box_plc([0.0; 3], [1.0; 3]);
+    let spec = box_spec([0.0; 3], [1.0; 3]);
+    let ms = run_all(
+        &plc,
+        &spec,
+        &[
+            plain(),
+            quality(2.0),
+            quality(1.414),
+            quality_volume(1.414, 1.0 / 500.0),
+        ],
+    );
+    // The plain cube needs no Steiner point: 8 cospherical vertices, 5 or 6 tets.
+    assert_eq!(ms[0].vertices.len(), 8);
+    assert!(ms[3].tets.len() >= 500);
+}
+
+#[test]
+fn grid_aligned_box_3x2x1() {
+    let (lo, hi) = ([0.0; 3], [3.0, 2.0, 1.0]);
+    let plc = box_plc(lo, hi);
+    let spec = box_spec(lo, hi);
+    run_all(
+        &plc,
+        &spec,
+        &[plain(), quality(1.414), quality_volume(1.414, 6.0 / 500.0)],
+    );
+}
+
+#[test]
+fn grid_aligned_stack_of_unit_cubes() {
+    // Three unit cubes in a row sharing two facets: grid-aligned, every facet a unit square.
+    let mut plc = Plc::default();
+    for i in 0..3 {
+        add_box(
+            &mut plc,
+            [i as f64, 0.0, 0.0],
+            [i as f64 + 1.0, 1.0, 1.0],
+            i + 1,
+        );
+    }
+    // add_box made duplicate points and facets on the shared planes: merge them.
+    let plc = merge_duplicates(&plc);
+    let spec = box_spec([0.0; 3], [3.0, 1.0, 1.0]);
+    run_all(&plc, &spec, &[plain(), quality(1.414)]);
+}
+
+/// Merges equal points and drops repeated facets (same vertex set); the first marker wins.
+fn merge_duplicates(plc: &Plc) -> Plc {
+    let mut out = Plc::default();
+    let mut map = Vec::new();
+    for p in &plc.points {
+        let i = out.points.iter().position(|q| q == p).unwrap_or_else(|| {
+            out.points.push(*p);
+            out.points.len() - 1
+        });
+        map.push(i as u32);
+    }
+    let mut seen: Vec<Vec<u32>> = Vec::new();
+    for f in &plc.facets {
+        let polys: Vec<Vec<u32>> = f
+            .polygons
+            .iter()
+            .map(|p| p.iter().map(|&v| map[v as usize]).collect())
+            .collect();
+        let mut key: Vec<u32> = polys.iter().flatten().copied().collect();
+        key.sort_unstable();
+        if seen.contains(&key) {
+            continue;
+        }
+        seen.push(key);
+        out.facets.push(Facet {
+            polygons: polys,
+            holes: f.holes.clone(),
+            marker: f.marker,
+        });
+    }
+    out
+}
+
+#[test]
+fn box_far_from_origin() {
+    let o = 1e6;
+    let (lo, hi) = ([o, o, o], [o + 3.0, o + 2.0, o + 1.0]);
+    let plc = box_plc(lo, hi);
+    let spec = box_spec(lo, hi);
+    run_all(
+        &plc,
+        &spec,
+        &[plain(), quality(1.414), quality_volume(1.414, 6.0 / 500.0)],
+    );
+}
+
+#[test]
+fn box_at_tiny_scale() {
+    let s = 1e-6;
+    let (lo, hi) = ([0.0; 3], [3.0 * s, 2.0 * s, s]);
+    let plc = box_plc(lo, hi);
+    let spec = box_spec(lo, hi);
+    let v = 3.0 * s * 2.0 * s * s;
+    run_all(
+        &plc,
+        &spec,
+        &[plain(), quality(1.414), quality_volume(1.414, v / 500.0)],
+    );
+}
+
+#[test]
+fn box_at_tiny_scale_far_from_origin() {
+    let (o, s) = (1.0, 1e-6);
+    let (lo, hi) = ([o, o, o], [o + 3.0 * s, o + 2.0 * s, o + s]);
+    let plc = box_plc(lo, hi);
+    let spec = box_spec(lo, hi);
+    run_all(&plc, &spec, &[plain(), quality(2.0)]);
+}
+
+// ------------------------------------------------------------------------------- cylinders
+
+fn cylinder(n: usize) {
+    let poly = regular_polygon(n, 1.0);
+    let h = 1.5;
+    let plc = prism_plc(&poly, None, 0.0, h, &Frame::identity());
+    let spec = Spec3 {
+        domain: Some(Domain {
+            cells: vec![Cell {
+                outer: poly.clone(),
+                holes: vec![],
+                z0: 0.0,
+                z1: h,
+                attribute: 0.0,
+            }],
+            frame: Frame::identity(),
+        }),
+        ..Spec3::default()
+    };
+    // Dihedral angles are 90 degrees (top/bottom with the sides) and 180 − 360/n between sides:
+    // no small input angle, so the bounds hold everywhere.
+    run_all(&plc, &spec, &[plain(), quality(2.0), quality(1.414)]);
+}
+
+/// The cylinder with radius-edge 1.414 and a volume bound of a 500th of its volume.
+fn cylinder_volume(n: usize) {
+    let poly = regular_polygon(n, 1.0);
+    let h = 1.5;
+    let plc = prism_plc(&poly, None, 0.0, h, &Frame::identity());
+    let dom = Domain {
+        cells: vec![Cell {
+            outer: poly.clone(),
+            holes: vec![],
+            z0: 0.0,
+            z1: h,
+            attribute: 0.0,
+        }],
+        frame: Frame::identity(),
+    };
+    let v = dom.volume();
+    let spec = Spec3 {
+        domain: Some(dom),
+        timeout: Duration::from_secs(30),
+        ..Spec3::default()
+    };
+    let opts = Options3 {
+        max_steiner: Some(200_000),
+        ..quality_volume(1.414, v / 500.0)
+    };
+    run_all(&plc, &spec, &[opts]);
+}
+
+#[test]
+#[ignore = "idmesh bug: radius-edge + max_volume on a prism with slanted side facets never completes (Steiner cap hit with ~300 vertices in the mesh); see cylinder_volume and the report"]
+fn cylinder_8_quality_volume() {
+    cylinder_volume(8);
+}
+
+#[test]
+#[ignore = "idmesh bug: radius-edge + max_volume on a prism with slanted side facets never completes (Steiner cap hit); see cylinder_volume"]
+fn cylinder_16_quality_volume() {
+    cylinder_volume(16);
+}
+
+#[test]
+fn cylinder_8() {
+    cylinder(8);
+}
+
+#[test]
+fn cylinder_16() {
+    cylinder(16);
+}
+
+#[test]
+fn cylinder_32() {
+    cylinder(32);
+}
+
+#[test]
+fn cylinder_64() {
+    cylinder(64);
+}
+
+#[test]
+fn cylindrical_tube_16_with_hole_8() {
+    let outer = regular_polygon(16, 2.0);
+    let hole = regular_polygon(8, 1.0);
+    let plc = prism_plc(
+        &outer,
+        Some((&hole, [0.0, 0.0])),
+        0.0,
+        1.0,
+        &Frame::identity(),
+    );
+    let spec = Spec3 {
+        domain: Some(Domain {
+            cells: vec![Cell {
+                outer,
+                holes: vec![hole],
+                z0: 0.0,
+                z1: 1.0,
+                attribute: 0.0,
+            }],
+            frame: Frame::identity(),
+        }),
+        ..Spec3::default()
+    };
+    run_all(&plc, &spec, &[plain(), quality(2.0), quality(1.414)]);
+}
+
+// ------------------------------------------------------------------------- lattice inputs
+
+#[test]
+fn cube_with_interior_lattice() {
+    // A 6-cube with the 5×5×5 integer points inside it as input points: every unit cell of the
+    // lattice has 8 cospherical vertices.
+    let k = 6.0;
+    let mut plc = box_plc([0.0; 3], [k; 3]);
+    for i in 1..6 {
+        for j in 1..6 {
+            for l in 1..6 {
+                plc.points.push([i as f64, j as f64, l as f64]);
+            }
+        }
+    }
+    let spec = box_spec([0.0; 3], [k; 3]);
+    run_all(&plc, &spec, &[plain(), quality(2.0), quality(1.414)]);
+}
+
+/// The lattice points on the surface of `[0, k]³` and the cube's facets through them: each facet
+/// is the loop of its boundary lattice points and its interior lattice points as 1-vertex
+/// polygons.
+fn cube_with_facet_lattice(k: i32) -> Plc {
+    let mut plc = Plc::default();
+    let mut index = std::collections::HashMap::new();
+    let mut id = |plc: &mut Plc, p: [i32; 3]| -> u32 {
+        *index.entry(p).or_insert_with(|| {
+            plc.points.push(p.map(f64::from));
+            plc.points.len() as u32 - 1
+        })
+    };
+    for axis in 0..3 {
+        let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+        for side in [0, k] {
+            let at = |a: i32, b: i32| {
+                let mut p = [0; 3];
+                p[axis] = side;
+                p[u] = a;
+                p[v] = b;
+                p
+            };
+            let mut ring = Vec::new();
+            for a in 0..k {
+                ring.push(at(a, 0));
+            }
+            for b in 0..k {
+                ring.push(at(k, b));
+            }
+            for a in (1..=k).rev() {
+                ring.push(at(a, k));
+            }
+            for b in (1..=k).rev() {
+                ring.push(at(0, b));
+            }
+            let mut polygons = vec![ring.iter().map(|&p| id(&mut plc, p)).collect::<Vec<_>>()];
+            for a in 1..k {
+                for b in 1..k {
+                    polygons.push(vec![id(&mut plc, at(a, b))]);
+                }
+            }
+            plc.facets.push(Facet {
+                polygons,
+                holes: vec![],
+                marker: 1 + axis as i32,
+            });
+        }
+    }
+    plc
+}
+
+#[test]
+fn cube_with_facet_lattice_4() {
+    let plc = cube_with_facet_lattice(4);
+    assert_eq!(plc.points.len(), 6 * 9 + 12 * 3 + 8);
+    let spec = box_spec([0.0; 3], [4.0; 3]);
+    run_all(&plc, &spec, &[plain(), quality(2.0), quality(1.414)]);
+}
+
+#[test]
+fn cube_with_facet_and_interior_lattice_3() {
+    let mut plc = cube_with_facet_lattice(3);
+    for i in 1..3 {
+        for j in 1..3 {
+            for l in 1..3 {
+                plc.points.push([i as f64, j as f64, l as f64]);
+            }
+        }
+    }
+    let spec = box_spec([0.0; 3], [3.0; 3]);
+    run_all(
+        &plc,
+        &spec,
+        &[plain(), quality(1.414), quality_volume(1.414, 27.0 / 500.0)],
+    );
+}
+
+// ------------------------------------------------------------------------------ delaunay3d
+
+#[test]
+fn delaunay_lattice_6() {
+    let mut pts = Vec::new();
+    for i in 0..6 {
+        for j in 0..6 {
+            for l in 0..6 {
+                pts.push([i as f64, j as f64, l as f64]);
+            }
+        }
+    }
+    let m = delaunay_ok(pts);
+    assert!(
+        (common3d::sum_compensated(
+            (0..m.tets.len()).map(|t| { common3d::tet_volume(m.corners(t)) })
+        ) - 125.0)
+            .abs()
+            < 1e-9 * 125.0
+    );
+}
+
+#[test]
+fn delaunay_exactly_cospherical_integer_points() {
+    // Every integer point at distance 13 from the origin (all exactly cospherical) and the
+    // centre.
+    let mut pts = vec![[0.0; 3]];
+    for x in -13i32..=13 {
+        for y in -13i32..=13 {
+            for z in -13i32..=13 {
+                if x * x + y * y + z * z == 169 {
+                    pts.push([x, y, z].map(f64::from));
+                }
+            }
+        }
+    }
+    assert!(pts.len() > 50, "{} points", pts.len());
+    delaunay_ok(pts.clone());
+    // Without the centre: every tet has all its neighbours' apexes on its circumsphere.
+    delaunay_ok(pts[1..].to_vec());
+}
+
+#[test]
+fn delaunay_nearly_cospherical_points() {
+    // A Fibonacci sphere (rounded: nearly, not exactly, cospherical) plus two concentric copies.
+    let n = 300;
+    let mut pts = Vec::new();
+    for r in [1.0, 0.5, 1e-3] {
+        for i in 0..n {
+            let z = 1.0 - (2.0 * i as f64 + 1.0) / n as f64;
+            let rho = (1.0 - z * z).sqrt();
+            let a = i as f64 * 2.399_963_229_728_653;
+            pts.push([r * rho * a.cos(), r * rho * a.sin(), r * z]);
+        }
+    }
+    delaunay_ok(pts);
+}
+
+#[test]
+fn delaunay_cube_corners_and_lattice_offset() {
+    // A 4×4×4 lattice far from the origin.
+    let o = 1e6;
+    let mut pts = Vec::new();
+    for i in 0..4 {
+        for j in 0..4 {
+            for l in 0..4 {
+                pts.push([o + i as f64, o + j as f64, o + l as f64]);
+            }
+        }
+    }
+    delaunay_ok(pts);
+}
+
+// ------------------------------------------------------------------ the checker can fail
+
+#[test]
+fn checker_rejects_corrupted_meshes() {
+    let (lo, hi) = ([0.0; 3], [2.0, 1.0, 1.0]);
+    let plc = box_plc(lo, hi);
+    let opts = quality_volume(1.414, 2.0 / 100.0);
+    let spec = box_spec(lo, hi);
+    let (mesh, rep) = mesh_and_check(&plc, &opts, &spec).unwrap();
+    assert!(rep.steiner > 0 && rep.tets > 100);
+    let reject = |m: &TetMesh, o: &Options3, s: &Spec3, what: &str| {
+        let r = check_plc_mesh(&plc, o, m, s);
+        assert!(r.is_err(), "checker accepted: {what}");
+        r.unwrap_err()
+    };
+    // A moved input vertex.
+    let mut m = mesh.clone();
+    m.vertices[3][0] += 1e-9;
+    reject(&m, &opts, &spec, "moved input vertex");
+    // A Steiner vertex moved by a little (it stays valid for orientation, but breaks Delaunay,
+    // conformity or volume).
+    let mut m = mesh.clone();
+    let v = (8..m.vertices.len())
+        .find(|&v| m.vertices[v][2] == 0.0 && m.vertices[v][0] > 0.0 && m.vertices[v][0] < 2.0)
+        .expect("a Steiner vertex on the bottom facet");
+    m.vertices[v][2] = 1e-7;
+    reject(&m, &opts, &spec, "Steiner vertex lifted off its facet");
+    // A dropped tet.
+    let mut m = mesh.clone();
+    m.tets.pop();
+    m.neighbors.pop();
+    reject(&m, &opts, &spec, "dropped tet");
+    // A dropped tet with the neighbours patched (so only volume and conformity see it).
+    let mut m = mesh.clone();
+    let last = m.tets.len() as u32 - 1;
+    m.tets.pop();
+    m.neighbors.pop();
+    for row in &mut m.neighbors {
+        for n in row.iter_mut() {
+            if *n == last {
+                *n = u32::MAX;
+            }
+        }
+    }
+    let e = reject(&m, &opts, &spec, "dropped tet, neighbours patched");
+    assert!(
+        e.contains("volume") || e.contains("subface") || e.contains("cover"),
+        "{e}"
+    );
+    // An inverted tet.
+    let mut m = mesh.clone();
+    m.tets[0].swap(0, 1);
+    let e = reject(&m, &opts, &spec, "inverted tet");
+    assert!(e.contains("positively oriented"), "{e}");
+    // A missing subface and a missing subsegment.
+    let mut m = mesh.clone();
+    m.faces.pop();
+    m.face_markers.pop();
+    reject(&m, &opts, &spec, "missing subface");
+    let mut m = mesh.clone();
+    m.edges.pop();
+    m.edge_markers.pop();
+    let e = reject(&m, &opts, &spec, "missing subsegment");
+    assert!(e.contains("subsegment"), "{e}");
+    // A wrong marker on a subface.
+    let mut m = mesh.clone();
+    m.face_markers[0] += 7;
+    reject(&m, &opts, &spec, "wrong subface marker");
+    // The wrong volume, a hole where the mesh has tets, a bound the mesh does not meet.
+    let wrong = box_spec(lo, [2.0, 1.0, 1.0 + 1e-6]);
+    let e = reject(&mesh, &opts, &wrong, "wrong volume");
+    assert!(e.contains("volume"), "{e}");
+    let holed = Spec3 {
+        domain: Some(Domain {
+            cells: vec![Cell {
+                holes: vec![vec![[0.5, 0.25], [1.5, 0.25], [1.5, 0.75], [0.5, 0.75]]],
+                ..Cell::cuboid(lo, hi, 0.0)
+            }],
+            frame: Frame::identity(),
+        }),
+        volume: None,
+        ..Spec3::default()
+    };
+    reject(&mesh, &opts, &holed, "tets in a hole");
+    // (The mesh is good: its worst ratio may be below 1.0; ask for a bit less than it.)
+    assert!(rep.max_radius_edge > 0.7);
+    let e = reject(
+        &mesh,
+        &quality(rep.max_radius_edge * 0.999),
+        &spec,
+        "radius-edge below the mesh's worst",
+    );
+    assert!(e.contains("radius-edge"), "{e}");
+    let e = reject(&mesh, &quality_volume(1.414, 1e-4), &spec, "max volume");
+    assert!(e.contains("volume"), "{e}");
+    // Attributes asked for but absent.
+    let attr = Options3 {
+        region_attributes: true,
+        ..opts.clone()
+    };
+    let two = Spec3 {
+        domain: Some(Domain {
+            cells: vec![Cell::cuboid(lo, hi, 5.0)],
+            frame: Frame::identity(),
+        }),
+        ..Spec3::default()
+    };
+    reject(&mesh, &attr, &two, "missing attributes");
+}
+
+#[test]
+fn delaunay_checker_rejects_a_non_delaunay_pair() {
+    // Two tets on the face (a, b, c); the apex e of the second is inside the first's
+    // circumsphere (a flat pair: d and e close to the plane of a, b, c).
+    let a = [0.0, 0.0, 0.0];
+    let b = [1.0, 0.0, 0.0];
+    let c = [0.0, 1.0, 0.0];
+    let d = [0.2, 0.2, 1.0];
+    let e = [0.2, 0.2, -0.1];
+    let mut m = TetMesh {
+        vertices: vec![a, b, c, d, e],
+        vertex_markers: vec![0; 5],
+        num_input_vertices: 5,
+        tets: vec![[0, 1, 2, 3], [1, 0, 2, 4]],
+        neighbors: vec![
+            [u32::MAX, u32::MAX, u32::MAX, 1],
+            [u32::MAX, u32::MAX, u32::MAX, 0],
+        ],
+        complete: true,
+        ..TetMesh::default()
+    };
+    for t in 0..2 {
+        assert!(tetgen_positive(m.corners(t)), "tet {t}");
+    }
+    let err = check_delaunay(&m).unwrap_err();
+    assert!(err.contains("not Delaunay"), "{err}");
+    // With e far below, the pair is Delaunay.
+    m.vertices[4] = [0.2, 0.2, -10.0];
+    check_delaunay(&m).unwrap();
+    // The pair's union is convex (de crosses the triangle abc): a valid tetrahedralization of
+    // its five points, which check_point_mesh accepts; with e moved so that de misses abc the
+    // union is not convex, still Delaunay, and it must be rejected as not the hull.
+    m.faces = vec![
+        [0, 1, 3],
+        [1, 2, 3],
+        [0, 2, 3],
+        [0, 1, 4],
+        [1, 2, 4],
+        [0, 2, 4],
+    ];
+    m.face_markers = vec![0; 6];
+    check_point_mesh(&m.vertices.clone(), &m).unwrap();
+    m.vertices[4] = [3.0, 3.0, -0.5];
+    assert!(tetgen_positive(m.corners(1)));
+    check_delaunay(&m).unwrap();
+    let err = check_point_mesh(&m.vertices.clone(), &m).unwrap_err();
+    assert!(err.contains("not convex"), "{err}");
+}

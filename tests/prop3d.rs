@@ -114,6 +114,7 @@ fn run(
         check_quality: strict,
         tol: tolerance(plc),
         domain: Some(domain),
+        timeout: std::time::Duration::from_secs(30),
         ..Spec3::default()
     };
     let vol = spec.domain.as_ref().unwrap().volume();
@@ -485,7 +486,7 @@ fn build_split(raw: &SplitRaw) -> (Plc, Domain) {
 // ------------------------------------------------------------------------------ properties
 
 /// Cases per property (each case is one mesh); `PROPTEST_CASES` overrides.
-const CASES: u32 = 16;
+const CASES: u32 = 32;
 
 /// One property: a generator, whether it is rotated, one option set. `$build` maps the raw
 /// value to `Option<(plc, domain, strict)>`, `None` rejecting the case.
@@ -545,7 +546,7 @@ property!(
     0
 );
 property!(
-    #[ignore = "idmesh bug B: flat tet kept on a slanted facet (all four vertices in the facet plane, volume ~1e-20, centroid on the boundary); smallest: box lo=[0,0.8125,1.3125] hi=[2.1875,0.9375,2.3125] rotated by quaternion (7,-1,2,0), radius_edge 2.0"]
+    #[ignore = "idmesh bug B: flat tet kept on a slanted facet (all four vertices in the facet plane, volume ~1e-20, centroid on the boundary); smallest: box lo=[0,0.8125,1.3125] hi=[2.1875,0.9375,2.3125] rotated by quaternion (7,-1,2,0), radius_edge 2.0; reproducer: degenerate3d bug_b_no_flat_tet_on_rotated_facet"]
     box_rotated_q2,
     box_raw(true),
     |raw| boxed(&raw),
@@ -553,7 +554,7 @@ property!(
     1
 );
 property!(
-    #[ignore = "idmesh bug A: radius_edge + max_volume never completes on PLCs with slanted (non-axis-aligned) facets (the Steiner cap is hit with a few hundred vertices in the mesh); smallest: the unit cube rotated by the 3-4-5 rotation about z (quaternion (2,0,0,1), points m*p/4), radius_edge 1.414, max_volume 1.953125/500"]
+    #[ignore = "idmesh bug A: radius_edge + max_volume never completes on PLCs with slanted (non-axis-aligned) facets (the Steiner cap is hit with a few hundred vertices in the mesh); smallest: the unit cube rotated by the 3-4-5 rotation about z (quaternion (2,0,0,1), points m*p/4), radius_edge 1.414, max_volume 1.953125/500; reproducers: degenerate3d bug_a_*"]
     box_rotated_q1414_vol,
     box_raw(true),
     |raw| boxed(&raw),
@@ -580,7 +581,7 @@ property!(
     1
 );
 property!(
-    #[ignore = "idmesh bug A: radius_edge + max_volume never completes on PLCs with slanted (non-axis-aligned) facets (the Steiner cap is hit with a few hundred vertices in the mesh); smallest: a triangular prism (see the report); also the unit cube rotated by the 3-4-5 rotation about z (quaternion (2,0,0,1), points m*p/4), radius_edge 1.414, max_volume 1.953125/500"]
+    #[ignore = "idmesh bug A: radius_edge + max_volume never completes on PLCs with slanted (non-axis-aligned) facets (the Steiner cap is hit with a few hundred vertices in the mesh); smallest: a triangular prism (see the report); also the unit cube rotated by the 3-4-5 rotation about z (quaternion (2,0,0,1), points m*p/4), radius_edge 1.414, max_volume 1.953125/500; reproducers: degenerate3d bug_a_*"]
     prism_aligned_q1414_vol,
     prism_raw(false),
     |raw| build_prism(&raw),
@@ -595,6 +596,7 @@ property!(
     0
 );
 property!(
+    #[ignore = "idmesh bug B: flat tet (volume 4.3e-20) with all four vertices on a side facet of the hole of a rotated triangular prism (quaternion (6,0,1,0)), radius_edge 2.0 (found at 32 cases; see the report)"]
     prism_rotated_q2,
     prism_raw(true),
     |raw| build_prism(&raw),
@@ -602,7 +604,7 @@ property!(
     1
 );
 property!(
-    #[ignore = "idmesh bug A: radius_edge + max_volume never completes on PLCs with slanted (non-axis-aligned) facets (the Steiner cap is hit with a few hundred vertices in the mesh); smallest: the unit cube rotated by the 3-4-5 rotation about z (quaternion (2,0,0,1), points m*p/4), radius_edge 1.414, max_volume 1.953125/500"]
+    #[ignore = "idmesh bug A: radius_edge + max_volume never completes on PLCs with slanted (non-axis-aligned) facets (the Steiner cap is hit with a few hundred vertices in the mesh); smallest: the unit cube rotated by the 3-4-5 rotation about z (quaternion (2,0,0,1), points m*p/4), radius_edge 1.414, max_volume 1.953125/500; reproducers: degenerate3d bug_a_*"]
     prism_rotated_q1414_vol,
     prism_raw(true),
     |raw| build_prism(&raw),
@@ -643,6 +645,7 @@ property!(
     0
 );
 property!(
+    #[ignore = "idmesh bug D: complete mesh with radius-edge 6.4 > 2 (Steiner vertices next to the shared facet) on two rotated stacked boxes, quaternion (6,2,2,1), lower box 2.5x2.125x0.5, upper 0.5 high, radius_edge 2.0 (found at 32 cases; see the report)"]
     stack_rotated_q2,
     stack_raw(true, false),
     |raw| stacked(&raw),
@@ -650,7 +653,7 @@ property!(
     1
 );
 property!(
-    #[ignore = "idmesh bugs A and E: stacked rotated boxes with radius_edge 1.414 + max_volume either never complete or panic (cavity of vertex 365 is not star-shaped (new tet 1665 is flat or inverted)); smallest: two unit-footprint boxes rotated by quaternion (6,0,0,1)"]
+    #[ignore = "idmesh bugs A and E: stacked rotated boxes with radius_edge 1.414 + max_volume either never complete or panic (cavity of vertex 365 is not star-shaped (new tet 1665 is flat or inverted)); smallest: two unit-footprint boxes rotated by quaternion (6,0,0,1); reproducer: degenerate3d bug_e_rotated_stacked_boxes_no_panic"]
     stack_rotated_q1414_vol,
     stack_raw(true, false),
     |raw| stacked(&raw),
@@ -666,7 +669,7 @@ property!(
     0
 );
 property!(
-    #[ignore = "idmesh bug C: complete mesh with radius-edge above the bound (5.39 > 2, tet of input vertices only) where the lower box top is a ring facet around an inset upper box; angles are all 90/180/270 degrees; smallest: lower box 1x1x0.5, upper box [0.125,0.875]^2 x [0.5,1], radius_edge 2.0"]
+    #[ignore = "idmesh bug C: complete mesh with radius-edge above the bound (5.39 > 2 on a tet of input vertices) where the lower box top is a ring facet around an inset upper box; angles are all 90/180/270 degrees; reproducer: degenerate3d bug_c_inset_stack_meets_radius_edge_2 (3.81 > 2)"]
     inset_aligned_q2,
     stack_raw(false, true),
     |raw| stacked(&raw),
@@ -674,7 +677,7 @@ property!(
     1
 );
 property!(
-    #[ignore = "idmesh bug C: complete mesh with radius-edge above the bound (1.44 > 1.414, tet of input vertices only) where the lower box top is a ring facet around an inset upper box; angles are all 90/180/270 degrees; smallest: lower box 1x1x0.5, upper box [0.125,0.875]^2 x [0.5,1], radius_edge 1.414 + max_volume"]
+    #[ignore = "idmesh bug C: complete mesh with radius-edge above the bound (1.44 > 1.414) where the lower box top is a ring facet around an inset upper box; angles are all 90/180/270 degrees, radius_edge 1.414 + max_volume; reproducer of the 2.0 case: degenerate3d bug_c_*"]
     inset_aligned_q1414_vol,
     stack_raw(false, true),
     |raw| stacked(&raw),
@@ -689,7 +692,7 @@ property!(
     0
 );
 property!(
-    #[ignore = "idmesh bug C: complete mesh with radius-edge above the bound (5.39 > 2, tet of input vertices only) where the lower box top is a ring facet around an inset upper box; angles are all 90/180/270 degrees; smallest: lower box 1x1x0.5, upper box [0.125,0.875]^2 x [0.5,1], radius_edge 2.0"]
+    #[ignore = "idmesh bug C: complete mesh with radius-edge above the bound (5.39 > 2 on a tet of input vertices) where the lower box top is a ring facet around an inset upper box; angles are all 90/180/270 degrees; reproducer: degenerate3d bug_c_inset_stack_meets_radius_edge_2 (3.81 > 2)"]
     inset_rotated_q2,
     stack_raw(true, true),
     |raw| stacked(&raw),
@@ -736,7 +739,7 @@ property!(
     0
 );
 property!(
-    #[ignore = "idmesh bug D: complete mesh with radius-edge 3.50 > 2 next to an internal facet of a rotated split box (quaternion (9,-1,0,-1)), radius_edge 2.0"]
+    #[ignore = "idmesh bug D: complete mesh with radius-edge 3.50 > 2 next to an internal facet of a rotated split box (quaternion (9,-1,0,-1)), radius_edge 2.0; reproducer: degenerate3d bug_d_rotated_split_box_meets_radius_edge_2"]
     split_rotated_q2,
     split_raw(true),
     |raw| split(&raw),
@@ -744,7 +747,7 @@ property!(
     1
 );
 property!(
-    #[ignore = "idmesh bug A: radius_edge + max_volume never completes on PLCs with slanted (non-axis-aligned) facets (the Steiner cap is hit with a few hundred vertices in the mesh); smallest: the unit cube rotated by the 3-4-5 rotation about z (quaternion (2,0,0,1), points m*p/4), radius_edge 1.414, max_volume 1.953125/500"]
+    #[ignore = "idmesh bug A: radius_edge + max_volume never completes on PLCs with slanted (non-axis-aligned) facets (the Steiner cap is hit with a few hundred vertices in the mesh); smallest: the unit cube rotated by the 3-4-5 rotation about z (quaternion (2,0,0,1), points m*p/4), radius_edge 1.414, max_volume 1.953125/500; reproducers: degenerate3d bug_a_*"]
     split_rotated_q1414_vol,
     split_raw(true),
     |raw| split(&raw),

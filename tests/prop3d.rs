@@ -183,7 +183,12 @@ type PrismRaw = (
 
 fn prism_raw(rotated: bool) -> impl Strategy<Value = PrismRaw> {
     (
-        prop::collection::vec((0.0..0.5f64, 0.0..1.0f64), 3..=9),
+        // Star polygons, and nearly regular ones (mostly free of angles below 90 degrees, so
+        // that the bounds are asserted on a good share of the cases).
+        prop_oneof![
+            prop::collection::vec((0.0..0.5f64, 0.0..1.0f64), 3..=9),
+            prop::collection::vec((0.0..0.15f64, 0.85..1.0f64), 5..=9),
+        ],
         0.0..TAU,
         0.5..2.0f64,
         prop::option::of((

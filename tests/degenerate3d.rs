@@ -784,6 +784,50 @@ fn bug_e_rotated_stacked_boxes_no_panic() {
     run_all(&plc, &spec, &[o]);
 }
 
+#[test]
+#[ignore = "idmesh bug F: tetrahedralize fails with Internal(facet point 213 refused) on a rotated triangular prism with a thin quadrilateral hole through it, radius_edge 2.0"]
+fn bug_f_prism_with_thin_hole_radius_edge_2() {
+    // Found by prism_rotated_q2 (a rotation about z by the quaternion (6, 0, 0, -1), so the
+    // top and bottom stay horizontal); written here in the rotated frame.
+    let outer = [
+        [0.6494140625, -0.22265625],
+        [-0.333984375, 1.69970703125],
+        [-1.33544921875, -1.16552734375],
+    ];
+    let hole = [
+        [0.0341796875, -0.01171875],
+        [0.01171875, 0.0341796875],
+        [-0.0341796875, 0.01171875],
+        [-0.017578125, -0.05126953125],
+    ];
+    let h = 1.373046875;
+    let plc = prism_plc(
+        &outer,
+        Some((&hole, [0.0, 0.0])),
+        0.0,
+        h,
+        &Frame::identity(),
+    );
+    assert_eq!(plc.points.len(), 14);
+    let spec = Spec3 {
+        domain: Some(Domain {
+            cells: vec![Cell {
+                outer: outer.to_vec(),
+                holes: vec![hole.to_vec()],
+                z0: 0.0,
+                z1: h,
+                attribute: 0.0,
+            }],
+            frame: Frame::identity(),
+        }),
+        // The triangle's angles are below 90 degrees: validity and conformity only.
+        check_quality: false,
+        timeout: Duration::from_secs(30),
+        ..Spec3::default()
+    };
+    run_all(&plc, &spec, &[quality(2.0)]);
+}
+
 // ------------------------------------------------------------------ the checker can fail
 
 #[test]

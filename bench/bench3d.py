@@ -30,7 +30,8 @@ example  The same for ../shared/data/3d/example.poly (relative to the repository
       target/release/idmesh tetgen -pq1.414a<V>V FILE.poly   (cargo build --release --bin idmesh)
       tetgen -pq1.414a<V>V FILE.poly
   The time is the whole process (read, mesh, write, as users run it) and the peak RSS is
-  wait4()'s ru_maxrss. `V` instead of `Q` makes both print their own timings, which are
+  wait4()'s ru_maxrss. `V` instead of `Q` (--quiet: `Q`; TetGen's -V statistics cost it ~20%
+  of its time) makes both print their own timings, which are
   reported as "own meshing s": idmesh's "meshing" (wall clock, reading and writing excluded),
   TetGen's "Total running seconds" minus "Output seconds" (CPU clock; TetGen's total starts
   after reading). Counts come from the headers of the output .ele and .node files. With
@@ -42,7 +43,7 @@ peak memory <= TetGen's; refinement cases: idmesh time <= 1.0 x TetGen's and tet
 TetGen's.
 
 Usage: python3 bench/bench3d.py [--cases random,cube,example] [--quick] [--points N] [--seed S]
-                                [--repeat K] [--verify] [--markdown] [--no-cgal] [--no-tetgen]
+                                [--repeat K] [--verify] [--quiet] [--markdown] [--no-cgal] [--no-tetgen]
                                 [--json OUT] [--render OUT.json] [--selftest] [--wait-idle S]
                                 [--timeout S]
 Inputs, outputs and the CGAL binary go to target/bench3d/.
@@ -730,8 +731,8 @@ def targets(res):
 
 
 def case_label(name, case):
-    """A refinement case's short name with its switches, e.g. `cube -pq1.414a0.000002`."""
-    return f"{name} -{case['switches']}"
+    """A refinement case's short name with its switches, e.g. `cube -pq1.414a0.000002V`."""
+    return f"{name} -{case['switches']}{case.get('last_switch', '')}"
 
 
 def build_refine_rows(cases):
@@ -757,7 +758,7 @@ def build_refine_rows(cases):
                 if v:
                     notes.append("verify3d " + ("OK" if v["ok"] else "FAILED: " + ", ".join(
                         v.get("failed") or [v.get("error", "?")])))
-            else:
+            elif r.get("refine_s") is not None:
                 notes.append("own = CPU; refinement %s s, optimization %s s" % (
                     tfmt(r.get("refine_s")), tfmt(r.get("optimize_s"))))
             rows.append([
@@ -786,6 +787,10 @@ def refine_targets(name, case):
                     r <= 1.0))
         r = i["tets"] / t["tets"]
         out.append((f"{name}: tets vs TetGen", f"ratio {r:.2f} (target <= 1.3)", r <= 1.3))
+        if i.get("cpu_s") and t.get("cpu_s"):
+            r = i["cpu_s"] / t["cpu_s"]
+            out.append((f"    {name}: process CPU time vs TetGen's (for information)",
+                        f"ratio {r:.2f}", None))
         if i.get("meshing_s") and t.get("meshing_s"):
             r = i["meshing_s"] / t["meshing_s"]
             out.append((f"    {name}: own meshing time vs TetGen's (for information)",
@@ -1035,6 +1040,7 @@ def run_refine(name, a, exes, use_tetgen):
     spec = REFINE_CASES[name]
     volume = spec["quick" if a.quick else "full"]
     switches = f"pq{RADIUS_EDGE}a{volume}"
+    last = "Q" if a.quiet else "V"
     idmesh = exes.get("cli")
     tool_names = (["idmesh"] if idmesh else []) + (["tetgen"] if use_tetgen else [])
     polys = prepare_refine(a.workdir, name, tool_names)
@@ -1048,15 +1054,16 @@ def run_refine(name, a, exes, use_tetgen):
     case = {"kind": "refine", "title": spec["title"], "input": f"{spec['title']} ({shown}): "
             f"{n} points, extent {extent}", "volume": volume, "switches": switches,
             "results": {}}
-    log(f"== {name}: {case['input']}; -{switches}, {a.repeat} runs per tool")
+    log(f"== {name}: {case['input']}; -{switches}{last}, {a.repeat} runs per tool")
+    case["last_switch"] = last
     tools = {}
     if idmesh:
         tools["idmesh"] = lambda rep: refine_child(
-            "idmesh", idmesh, polys["idmesh"], switches + "V", a.timeout,
+            "idmesh", idmesh, polys["idmesh"], switches + last, a.timeout,
             keep=a.verify and rep == 0)
     if use_tetgen:
         tools["tetgen"] = lambda rep: refine_child("tetgen", "tetgen", polys["tetgen"],
-                                                   switches + "V", a.timeout)
+                                                   switches + last, a.timeout)
     runs = interleaved(tools, a.repeat, a.wait_idle)
     case["results"] = {tool: summarise(rs) for tool, rs in runs.items()}
     if not idmesh:
@@ -1103,7 +1110,10 @@ def main():
     ap.add_argument("--repeat", type=int, default=3, help="runs per tool (median time)")
     ap.add_argument("--verify", action="store_true",
                     help="check the first idmesh mesh of each refinement case with "
-                         "../shared/tools/verify3d.py (untimed; minutes at full scale)")
+                         "../shared/tools/verify3d.py (untimed; ~40 s per 1M-tet mesh)")
+    ap.add_argument("--quiet", action="store_true",
+                    help="refinement runs end their switches with Q instead of V: no own "
+                         "timings, and neither tool computes its closing statistics")
     ap.add_argument("--verify-timeout", type=float, default=3600.0,
                     help="seconds per verify3d run")
     ap.add_argument("--markdown", action="store_true", help="emit a Markdown table")

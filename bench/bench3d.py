@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
-"""Side-by-side 3D Delaunay benchmark: idmesh vs TetGen (Debian's `tetgen`) vs CGAL.
+"""Side-by-side 3D benchmark: idmesh vs TetGen (Debian's `tetgen`) vs CGAL.
 
-The issue's case: the Delaunay tetrahedralization of 1,000,000 uniform random points in the unit
-cube (100,000 with --quick). Every tool runs in a fresh child process per run, interleaved
-(idmesh, TetGen, CGAL, idmesh, ...):
+The issue's cases (--cases picks some; the default is all three):
+
+random   The Delaunay tetrahedralization of 1,000,000 uniform random points in the unit cube
+         (100,000 with --quick). Every tool runs in a fresh child process per run, interleaved
+         (idmesh, TetGen, CGAL, idmesh, ...):
   * idmesh: `cargo build --release --example bench3d_points`; the child generates the points
             itself from the same SplitMix64 seed and times only `idmesh::delaunay3d`;
   * TetGen: `tetgen -V POINTS.node` (a TetGen .node file written once with round-trip-exact
@@ -15,21 +17,42 @@ cube (100,000 with --quick). Every tool runs in a fresh child process per run, i
   * CGAL:   bench/cgal_bench3d.cpp compiled with g++ -O2 against CGAL (Epick,
             Delaunay_triangulation_3, range insert with CGAL's spatial sort), timing only the
             insertion.
-idmesh and CGAL report their RSS just before the call and their peak RSS during it (VmHWM,
-reset through /proc/self/clear_refs just before the call) and their whole-life peak; all tools
-print or are checked against an `input_hash` of the coordinate bits.
+  idmesh and CGAL report their RSS just before the call and their peak RSS during it (VmHWM,
+  reset through /proc/self/clear_refs just before the call) and their whole-life peak; all
+  tools print or are checked against an `input_hash` of the coordinate bits.
 
-Targets (from the issue): idmesh time <= 0.5 x TetGen's, <= 1.0 x CGAL's, and idmesh's peak
-memory <= TetGen's.
+cube     Quality refinement of the unit cube (a .poly file written by the script) with
+         radius-edge 1.414 and the volume bound 0.000002 (~1M tets; 0.00002 with --quick).
+example  The same for ../shared/data/3d/example.poly (relative to the repository root; skipped
+         with a message if ../shared is absent), volume bound 0.000036 (0.0004 with --quick).
+  Both tools run as command lines on the same .poly file, each on its own copy in its own
+  directory (target/bench3d/CASE/TOOL/), in fresh processes, interleaved:
+      target/release/idmesh tetgen -pq1.414a<V>V FILE.poly   (cargo build --release --bin idmesh)
+      tetgen -pq1.414a<V>V FILE.poly
+  The time is the whole process (read, mesh, write, as users run it) and the peak RSS is
+  wait4()'s ru_maxrss. `V` instead of `Q` (--quiet: `Q`; TetGen's -V statistics cost it ~20%
+  of its time) makes both print their own timings, which are
+  reported as "own meshing s": idmesh's "meshing" (wall clock, reading and writing excluded),
+  TetGen's "Total running seconds" minus "Output seconds" (CPU clock; TetGen's total starts
+  after reading). Counts come from the headers of the output .ele and .node files. With
+  --verify the first idmesh mesh of each case goes through ../shared/tools/verify3d.py
+  (--require-delaunay, the radius-edge and volume bounds), untimed.
 
-Usage: python3 bench/bench3d.py [--quick] [--points N] [--seed S] [--repeat K] [--markdown]
-                                [--no-cgal] [--no-tetgen] [--json OUT] [--render OUT.json]
-                                [--selftest] [--wait-idle S] [--timeout S]
+Targets (from the issue): random: idmesh time <= 0.5 x TetGen's, <= 1.0 x CGAL's, and idmesh's
+peak memory <= TetGen's; refinement cases: idmesh time <= 1.0 x TetGen's and tet count <= 1.3 x
+TetGen's.
+
+Usage: python3 bench/bench3d.py [--cases random,cube,example] [--quick] [--points N] [--seed S]
+                                [--repeat K] [--verify] [--quiet] [--markdown] [--no-cgal] [--no-tetgen]
+                                [--json OUT] [--render OUT.json] [--selftest] [--wait-idle S]
+                                [--timeout S]
 Inputs, outputs and the CGAL binary go to target/bench3d/.
 """
 
 import argparse
+import collections
 import datetime
+import importlib.util
 import json
 import os
 import platform
@@ -48,6 +71,22 @@ CGAL_SRC = os.path.join(BENCH, "cgal_bench3d.cpp")
 FULL_POINTS = 1_000_000
 QUICK_POINTS = 100_000
 SEED = 20240601
+
+# The project's shared data and tools live next to the repository (../shared).
+SHARED = os.path.join(os.path.dirname(ROOT), "shared")
+VERIFY3D = os.path.join(SHARED, "tools", "verify3d.py")
+RADIUS_EDGE = "1.414"
+
+# The refinement cases. Volume bounds are decimal strings, passed verbatim to both tools: "full"
+# gives TetGen about 1,000,000 tets, "quick" about 100,000 (TetGen 1.5.0's counts are in
+# bench/README.md). source None: the unit cube, written by the script.
+REFINE_CASES = {
+    "cube": {"title": "unit cube", "source": None, "full": "0.000002", "quick": "0.00002"},
+    "example": {"title": "example.poly", "source": os.path.join(SHARED, "data", "3d",
+                                                                 "example.poly"),
+                "full": "0.000036", "quick": "0.0004"},
+}
+ALL_CASES = ["random"] + list(REFINE_CASES)
 
 GOLD = 0x9E3779B97F4A7C15
 M64 = (1 << 64) - 1
@@ -107,14 +146,66 @@ def read_node_back(path):
     return np.array([[float(t) for t in ln.split()[1:4]] for ln in lines[1:n + 1]])
 
 
+def write_cube_poly(path):
+    """The unit cube [0,1]^3 as a TetGen .poly file: 8 points, 6 quadrilateral facets."""
+    corners = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0),
+               (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+    facets = [(1, 2, 3, 4), (5, 6, 7, 8), (1, 2, 6, 5), (2, 3, 7, 6), (3, 4, 8, 7), (4, 1, 5, 8)]
+    with open(path, "w") as f:
+        f.write("# the unit cube, written by bench/bench3d.py\n8 3 0 0\n")
+        f.writelines(f"{i} {x} {y} {z}\n" for i, (x, y, z) in enumerate(corners, 1))
+        f.write("6 0\n")
+        f.writelines("1\n4 %d %d %d %d\n" % q for q in facets)
+        f.write("0\n0\n")
+
+
+def data_lines(path, limit=None):
+    """The non-empty lines of a TetGen file with comments removed, split into tokens (at most
+    `limit` lines)."""
+    out = []
+    with open(path) as f:
+        for line in f:
+            tokens = line.split("#", 1)[0].split()
+            if tokens:
+                out.append(tokens)
+                if limit is not None and len(out) >= limit:
+                    break
+    return out
+
+
+def poly_extent(path):
+    """The number of points and the bounding box (lo, hi) of a .poly file's points; the points
+    may also be in the .node file beside it (a point count of 0)."""
+    head = data_lines(path, 1)[0]
+    n = int(head[0])
+    src = path
+    if n == 0:
+        src = path[: -len(".poly")] + ".node"
+        n = int(data_lines(src, 1)[0][0])
+    rows = data_lines(src, n + 1)[1:]
+    xyz = [[float(t) for t in r[1:4]] for r in rows]
+    lo = [min(p[k] for p in xyz) for k in range(3)]
+    hi = [max(p[k] for p in xyz) for k in range(3)]
+    return n, lo, hi
+
+
+def header_count(path):
+    """The item count in the first data line of a TetGen output file (.node, .ele, .face), or
+    None if the file is missing or malformed."""
+    try:
+        return int(data_lines(path, 1)[0][0])
+    except (OSError, IndexError, ValueError):
+        return None
+
+
 # ---------------------------------------------------------------------------------------------
 # Setup
 # ---------------------------------------------------------------------------------------------
 
 def ensure_numpy():
-    try:
-        import numpy  # noqa: F401
-    except ImportError:
+    """Installs numpy if it is missing. It is imported only where it is used, so that the
+    script's own RSS stays small during the refinement runs (see run_child)."""
+    if importlib.util.find_spec("numpy") is None:
         log("installing numpy with pip")
         subprocess.check_call([sys.executable, "-m", "pip", "install", "-q", "numpy"])
 
@@ -147,19 +238,30 @@ def ensure_apt_deps(want_cgal, want_tetgen):
         return False
 
 
-def build_idmesh():
-    log("building idmesh: cargo build --release --example bench3d_points")
-    r = subprocess.run(["cargo", "build", "--release", "--example", "bench3d_points", "-q"],
+def build_idmesh(points, cli):
+    """Builds the release `bench3d_points` example (random case) and/or the `idmesh` binary
+    (refinement cases). Returns ({"points": path, "cli": path}, error message or None)."""
+    targets = (["--example", "bench3d_points"] if points else []) + (["--bin", "idmesh"]
+                                                                     if cli else [])
+    if not targets:
+        return {}, None
+    log("building idmesh: cargo build --release " + " ".join(targets))
+    r = subprocess.run(["cargo", "build", "--release", *targets, "-q"],
                        cwd=ROOT, capture_output=True, text=True)
     if r.returncode != 0:
         first = next((ln for ln in r.stderr.splitlines() if ln.startswith("error")), "")
         log(r.stderr[-3000:])
-        return None, "cargo build failed: " + first
+        return {}, "cargo build failed: " + first
     target = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
-    exe = os.path.join(target, "release", "examples", "bench3d_points")
-    if not os.path.exists(exe):
-        return None, f"built bench3d_points but cannot find it at {exe}"
-    return exe, None
+    exes = {}
+    if points:
+        exes["points"] = os.path.join(target, "release", "examples", "bench3d_points")
+    if cli:
+        exes["cli"] = os.path.join(target, "release", "idmesh")
+    for key, exe in exes.items():
+        if not os.path.exists(exe):
+            return {}, f"built {os.path.basename(exe)} but cannot find it at {exe}"
+    return exes, None
 
 
 def build_cgal(workdir):
@@ -206,10 +308,34 @@ def wait_for_quiet(max_wait, threshold=0.3):
     return min(first, busy)
 
 
+Child = collections.namedtuple("Child", "out err code wall ru parent_rss_kb")
+
+
+def reset_own_hwm():
+    """Resets this process's peak-RSS mark to its current RSS and returns that RSS in kB.
+
+    Linux folds the parent's peak RSS into a child's wait4() ru_maxrss (the parent's memory
+    image is the child's until exec), so a child's figure is never below the parent's peak.
+    After this reset that floor is the script's current RSS (~15 MB without numpy, ~30 MB with
+    it) instead of its largest ever (e.g. while writing 1M points)."""
+    try:
+        with open("/proc/self/clear_refs", "w") as f:
+            f.write("5")
+    except OSError:
+        pass
+    try:
+        with open("/proc/self/status") as f:
+            return next(int(ln.split()[1]) for ln in f if ln.startswith("VmRSS:"))
+    except (OSError, StopIteration, ValueError):
+        return None
+
+
 def run_child(cmd, timeout, cwd=ROOT):
-    """Runs cmd in a fresh process. Returns (stdout text, stderr text, exit code or None on
-    timeout, wall seconds, child's rusage)."""
+    """Runs cmd in a fresh process. Returns a Child: stdout text, stderr text, exit code (None
+    on timeout), wall seconds, the child's rusage, and the script's own RSS when it started the
+    child (the floor of ru_maxrss, see reset_own_hwm)."""
     with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
+        parent_rss = reset_own_hwm()
         t0 = time.perf_counter()
         p = subprocess.Popen(cmd, stdout=out, stderr=err, cwd=cwd)
         deadline = time.monotonic() + timeout
@@ -227,29 +353,43 @@ def run_child(cmd, timeout, cwd=ROOT):
         wall = time.perf_counter() - t0
         out.seek(0)
         err.seek(0)
-        return (out.read().decode(errors="replace"), err.read().decode(errors="replace"), code,
-                wall, ru)
+        return Child(out.read().decode(errors="replace"), err.read().decode(errors="replace"),
+                     code, wall, ru, parent_rss)
+
+
+def grab(pattern, text, cast=float):
+    """The first group of the first match of `pattern` in `text`, cast; None if no match."""
+    m = re.search(pattern, text)
+    return cast(m.group(1)) if m else None
+
+
+def failure(c, timeout):
+    """The error message of a failed Child run: a timeout, or the exit code and the last lines
+    of its output."""
+    if c.code is None:
+        return f"timeout after {timeout:.0f} s"
+    tail = (c.err.strip() or c.out.strip() or "no output").splitlines()[-3:]
+    return f"exit {c.code}: " + " | ".join(tail)
 
 
 def json_child(cmd, timeout):
     """Runs a child that prints one JSON line (idmesh, CGAL)."""
-    text, etext, code, wall, ru = run_child(cmd, timeout)
-    if code is None:
-        return {"error": f"timeout after {timeout:.0f} s"}
+    c = run_child(cmd, timeout)
+    if c.code is None:
+        return {"error": failure(c, timeout)}
     res = None
-    for line in reversed(text.strip().splitlines()):
+    for line in reversed(c.out.strip().splitlines()):
         try:
             res = json.loads(line)
             break
         except ValueError:
             continue
     if res is None:
-        tail = (etext or "no output").strip().splitlines()[-3:]
-        return {"error": f"exit {code}: " + " | ".join(tail)}
-    if code != 0 and "error" not in res:
-        res["error"] = f"exit {code}"
-    res["process_s"] = wall
-    res["cpu_s"] = ru.ru_utime + ru.ru_stime
+        return {"error": failure(c, timeout)}
+    if c.code != 0 and "error" not in res:
+        res["error"] = f"exit {c.code}"
+    res["process_s"] = c.wall
+    res["cpu_s"] = c.ru.ru_utime + c.ru.ru_stime
     # The child's whole-life peak: VmHWM before the reset covers set-up, after covers the call.
     if "hwm_after_kb" in res:
         res["peak_kb"] = res["hwm_after_kb"] - res["rss_before_kb"]
@@ -257,43 +397,131 @@ def json_child(cmd, timeout):
     return res
 
 
-def tetgen_child(node_path, workdir, timeout):
-    """Runs `tetgen -V` on the .node file in a scratch copy of the directory; parses its own
-    timings and counts. The peak RSS is wait4's ru_maxrss (tetgen is exec'd directly)."""
-    text, etext, code, wall, ru = run_child(["tetgen", "-V", node_path], timeout, cwd=workdir)
-    if code is None:
-        return {"error": f"timeout after {timeout:.0f} s"}
-    if code != 0 or "Delaunay seconds" not in text:
-        tail = (etext or text or "no output").strip().splitlines()[-3:]
-        return {"error": f"exit {code}: " + " | ".join(tail)}
-
-    def number(pattern, cast=float):
-        m = re.search(pattern, text)
-        return cast(m.group(1)) if m else None
-
-    stem = node_path[: -len(".node")]
-    for ext in (".1.node", ".1.ele", ".1.face", ".1.edge"):
+def remove_outputs(stem):
+    """Deletes STEM.node/.ele/.face/.edge (a run's outputs)."""
+    for ext in (".node", ".ele", ".face", ".edge"):
         try:
             os.remove(stem + ext)
         except OSError:
             pass
+
+
+def tetgen_child(node_path, workdir, timeout):
+    """Runs `tetgen -V` on the .node file in a scratch copy of the directory; parses its own
+    timings and counts. The peak RSS is wait4's ru_maxrss (tetgen is exec'd directly)."""
+    c = run_child(["tetgen", "-V", node_path], timeout, cwd=workdir)
+    text = c.out
+    if c.code != 0 or "Delaunay seconds" not in text:
+        return {"error": failure(c, timeout)}
+    remove_outputs(node_path[: -len(".node")] + ".1")
     return {
         "tool": "tetgen",
-        "time_s": wall,
-        "process_s": wall,
-        "cpu_s": ru.ru_utime + ru.ru_stime,
-        "delaunay_s": number(r"Delaunay seconds:\s*([0-9.eE+-]+)"),
-        "total_running_s": number(r"Total running seconds:\s*([0-9.eE+-]+)"),
-        "vertices": number(r"Mesh points:\s*(\d+)", int),
-        "tets": number(r"Mesh tetrahedra:\s*(\d+)", int),
-        "hull_faces": number(r"Convex hull faces:\s*(\d+)", int),
-        "input_points": number(r"Input points:\s*(\d+)", int),
-        "total_kb": ru.ru_maxrss,
+        "time_s": c.wall,
+        "process_s": c.wall,
+        "cpu_s": c.ru.ru_utime + c.ru.ru_stime,
+        "delaunay_s": grab(r"Delaunay seconds:\s*([0-9.eE+-]+)", text),
+        "total_running_s": grab(r"Total running seconds:\s*([0-9.eE+-]+)", text),
+        "vertices": grab(r"Mesh points:\s*(\d+)", text, int),
+        "tets": grab(r"Mesh tetrahedra:\s*(\d+)", text, int),
+        "hull_faces": grab(r"Convex hull faces:\s*(\d+)", text, int),
+        "input_points": grab(r"Input points:\s*(\d+)", text, int),
+        "total_kb": c.ru.ru_maxrss,
+        "parent_rss_kb": c.parent_rss_kb,
     }
 
 
+# TetGen -V's own timings (CPU seconds from clock(); "Total running" starts after reading).
+TETGEN_STAGES = {
+    "delaunay_s": "Delaunay seconds",
+    "surface_s": "Surface mesh seconds",
+    "cdt_s": "Constrained Delaunay seconds",
+    "exterior_s": "Exterior tets removal seconds",
+    "refine_s": "Refinement seconds",
+    "optimize_s": "Optimization seconds",
+    "output_s": "Output seconds",
+    "total_running_s": "Total running seconds",
+}
+NUMBER = r"([0-9]+(?:\.[0-9]*)?(?:[eE][+-]?[0-9]+)?)"
+
+
+def parse_idmesh_verbose(text):
+    """The figures of `idmesh tetgen -V`'s closing statistics (None where absent)."""
+    return {
+        "read_s": grab(r"Time: reading " + NUMBER + " s", text),
+        "meshing_s": grab(r"meshing " + NUMBER + " s", text),
+        "write_s": grab(r"writing " + NUMBER + " s", text),
+        "stdout_tets": grab(r"Mesh: \d+ vertices .*?, (\d+) tetrahedra", text, int),
+        "volume": grab(r"Volume: " + NUMBER, text),
+        "max_radius_edge": grab(r"Radius-edge ratio: largest " + NUMBER, text),
+    }
+
+
+def parse_tetgen_verbose(text):
+    """TetGen -V's stage timings; its own meshing time is the total minus the output stage."""
+    out = {k: grab(re.escape(label) + r":\s*" + NUMBER, text) for k, label in
+           TETGEN_STAGES.items()}
+    total, output = out["total_running_s"], out["output_s"]
+    out["meshing_s"] = None if total is None else total - (output or 0.0)
+    out["stdout_tets"] = grab(r"Mesh tetrahedra:\s*(\d+)", text, int)
+    return out
+
+
+def refine_child(tool, exe, poly, switches, timeout, keep=False):
+    """Runs one refinement job as users run it: `idmesh tetgen -SWITCHES FILE.poly` or
+    `tetgen -SWITCHES FILE.poly`, in the directory of the tool's own copy of the input. Returns
+    the whole-process wall and CPU time, the peak RSS from wait4(), the tool's own timings, and
+    the tet and vertex counts from the output headers. The outputs (FILE.1.*) are removed, or
+    with `keep` renamed to FILE.kept.* (later runs do not overwrite them)."""
+    workdir, name = os.path.split(poly)
+    stem = poly[: -len(".poly")] + ".1"
+    remove_outputs(stem)
+    cmd = ([exe, "tetgen"] if tool == "idmesh" else [exe]) + ["-" + switches, name]
+    c = run_child(cmd, timeout, cwd=workdir)
+    tets, vertices = header_count(stem + ".ele"), header_count(stem + ".node")
+    res = {"tool": tool, "cmd": " ".join(cmd)}
+    if c.code != 0 or tets is None:
+        res["error"] = failure(c, timeout) if c.code != 0 else "no .ele output"
+    else:
+        res.update(parse_idmesh_verbose(c.out) if tool == "idmesh"
+                   else parse_tetgen_verbose(c.out))
+        res.update({
+            "time_s": c.wall, "process_s": c.wall, "cpu_s": c.ru.ru_utime + c.ru.ru_stime,
+            "tets": tets, "vertices": vertices, "total_kb": c.ru.ru_maxrss,
+            "parent_rss_kb": c.parent_rss_kb,
+        })
+        if res.get("stdout_tets") not in (None, tets):
+            res["note"] = f"prints {res['stdout_tets']:,} tets, .ele has {tets:,}"
+        if "Steiner point limit" in c.out + c.err:
+            res["note"] = "Steiner point limit reached: incomplete mesh"
+    if keep and "error" not in res:
+        kept = poly[: -len(".poly")] + ".kept"
+        remove_outputs(kept)
+        for ext in (".node", ".ele", ".face"):
+            os.replace(stem + ext, kept + ext)
+        res["kept_stem"] = kept
+    remove_outputs(stem)
+    return res
+
+
+def verify_mesh(source, stem, volume, timeout):
+    """Checks a kept idmesh output with ../shared/tools/verify3d.py (exact predicates): valid,
+    conforming, Delaunay, radius-edge and volume bounds. Untimed. Returns {"ok", "seconds",
+    "failed" (names of failed checks), "error"}."""
+    cmd = [sys.executable, VERIFY3D, source, stem + ".node", stem + ".ele", stem + ".face",
+           "--require-delaunay", "--radius-edge", RADIUS_EDGE, "--max-volume", volume, "--json"]
+    c = run_child(cmd, timeout)
+    res = {"seconds": round(c.wall, 1), "ok": c.code == 0}
+    try:
+        summary = json.loads(c.out.strip().splitlines()[-1])
+        res["failed"] = [k for k, v in summary.get("checks", {}).items()
+                         if isinstance(v, dict) and v.get("ok") is False]
+    except (ValueError, IndexError, AttributeError):
+        res["error"] = failure(c, timeout)
+    return res
+
+
 def summarise(runs):
-    """Median time over the repeats; memory as the largest seen."""
+    """Median time over the repeats (and the best); memory as the largest seen."""
     ok = [r for r in runs if "error" not in r]
     if not ok:
         return {"error": runs[0].get("error", "failed") if runs else "not run"}
@@ -301,20 +529,51 @@ def summarise(runs):
     out["times"] = [r["time_s"] for r in ok]
     out["time_s"] = statistics.median(out["times"])
     out["best_s"] = min(out["times"])
-    for key in ("process_s", "cpu_s", "delaunay_s"):
+    for key in ("process_s", "cpu_s", "delaunay_s", "meshing_s", "read_s", "write_s",
+                "refine_s", "optimize_s", "output_s", "total_running_s"):
         vals = [r[key] for r in ok if r.get(key) is not None]
         out[key] = statistics.median(vals) if vals else None
     for key in ("peak_kb", "total_kb"):
         vals = [r[key] for r in ok if r.get(key) is not None]
         out[key] = max(vals) if vals else None
     out["runs"] = len(ok)
+    if len(ok) < len(runs):
+        out["failed_runs"] = len(runs) - len(ok)
     out["busy_cores_max"] = max(r.get("busy_cores_before", 0.0) for r in ok)
     bad = [r for r in ok if r.get("valid") is False]
     if bad:
         out["note"] = "INVALID mesh: " + bad[0].get("invalid_reason", "")[:80]
     elif any(r.get("valid") for r in ok):
         out["note"] = "validate() ok"
+    # A wait4() peak no larger than the script's own RSS may be the script's (see run_child).
+    floor = max((r.get("parent_rss_kb") or 0) for r in ok)
+    if out.get("total_kb") is not None and "peak_kb" not in out and out["total_kb"] <= floor:
+        out["peak_floor"] = f"peak <= the script's own RSS ({floor / 1024:.0f} MB): an upper bound"
     return out
+
+
+def interleaved(tools, repeat, wait_idle, check=None):
+    """Runs every tool `repeat` times, interleaved (a, b, c, a, b, c, ...), each after waiting
+    for the machine to go quiet. tools: {name: fn(rep) -> result dict}. check(result) may
+    return an error message that replaces the result. Returns {name: [results]}."""
+    runs = {t: [] for t in tools}
+    for rep in range(repeat):
+        for tool, fn in tools.items():
+            busy = wait_for_quiet(wait_idle)
+            r = fn(rep)
+            r["busy_cores_before"] = round(busy, 2)
+            problem = check(r) if check and "error" not in r else None
+            if problem:
+                r = {"error": problem, "busy_cores_before": r["busy_cores_before"]}
+            runs[tool].append(r)
+            msg = r.get("error") or "%.3f s, %s tets" % (r["time_s"], "{:,}".format(r["tets"])
+                                                          if r.get("tets") is not None else "?")
+            if r.get("meshing_s") is not None:
+                msg += ", own meshing %.3f s" % r["meshing_s"]
+            if r.get("total_kb"):
+                msg += ", peak %.0f MB" % (r["total_kb"] / 1024)
+            log(f"   {tool:7s} run {rep + 1}: {msg}")
+    return runs
 
 
 # ---------------------------------------------------------------------------------------------
@@ -384,43 +643,74 @@ def ratio(a, b):
     return "-" if not a or not b else "%.2f" % (a / b)
 
 
+def count(n):
+    return "-" if n is None else "{:,}".format(n)
+
+
+def ok(r):
+    """Whether a summarised tool result exists and did not fail."""
+    return r is not None and "error" not in r
+
+
 HEADER = ["tool", "time s", "best s", "CPU s", "÷ TetGen process", "÷ TetGen Delaunay",
-          "÷ CGAL", "tets", "hull faces", "call peak MB", "process peak MB", "note"]
+          "÷ CGAL", "tets", "vertices", "hull faces", "call peak MB", "process peak MB",
+          "peak ÷ TetGen", "note"]
+
+REFINE_HEADER = ["case", "tool", "time s", "best s", "÷ TetGen", "own meshing s",
+                 "own ÷ TetGen own", "CPU s", "tets", "tets ÷ TetGen", "vertices", "peak MB",
+                 "peak ÷ TetGen", "note"]
+
+
+def common_notes(r):
+    """Notes every row may carry: the result's own note, a memory floor, a busy machine."""
+    notes = [r["note"]] if r.get("note") else []
+    if r.get("peak_floor"):
+        notes.append(r["peak_floor"])
+    if r.get("failed_runs"):
+        notes.append(f"{r['failed_runs']} run(s) failed")
+    if r.get("busy_cores_max", 0.0) > 0.3:
+        notes.append("other jobs used up to %.1f cores" % r["busy_cores_max"])
+    return notes
+
+
+def error_row(prefix, r, width):
+    """A table row for a tool that failed or was not run."""
+    return prefix + ["error: " + r["error"][:90]] + [""] * (width - len(prefix) - 1)
 
 
 def build_rows(res):
+    """Rows of the random case's table."""
     tg, cg = res.get("tetgen", {}), res.get("cgal", {})
-    tg_t = tg.get("time_s") if "error" not in tg else None
-    tg_d = tg.get("delaunay_s") if "error" not in tg else None
-    cg_t = cg.get("time_s") if "error" not in cg else None
+    tg_t = tg.get("time_s") if ok(tg) else None
+    tg_d = tg.get("delaunay_s") if ok(tg) else None
+    tg_m = tg.get("total_kb") if ok(tg) else None
+    cg_t = cg.get("time_s") if ok(cg) else None
     rows = []
     for tool in ("idmesh", "tetgen", "cgal"):
         r = res.get(tool)
         if r is None:
             continue
         if "error" in r:
-            rows.append([tool, "error: " + r["error"][:90]] + [""] * (len(HEADER) - 2))
+            rows.append(error_row([tool], r, len(HEADER)))
             continue
-        notes = [r["note"]] if r.get("note") else []
+        notes = common_notes(r)
         if tool == "tetgen":
             notes.append("time = whole process (read .node, tetrahedralize, write); "
                          "its own 'Delaunay seconds' (CPU): %s" % tfmt(r.get("delaunay_s")))
-        if r.get("busy_cores_max", 0.0) > 0.3:
-            notes.append("other jobs used up to %.1f cores" % r["busy_cores_max"])
         rows.append([
             tool, tfmt(r["time_s"]), tfmt(r["best_s"]), tfmt(r.get("cpu_s")),
             ratio(r["time_s"], tg_t), ratio(r["time_s"], tg_d), ratio(r["time_s"], cg_t),
-            "{:,}".format(r["tets"]) if r.get("tets") is not None else "-",
-            "{:,}".format(r["hull_faces"]) if r.get("hull_faces") is not None else "-",
-            mb(r.get("peak_kb")), mb(r.get("total_kb")), "; ".join(notes),
+            count(r.get("tets")), count(r.get("vertices")), count(r.get("hull_faces")),
+            mb(r.get("peak_kb")), mb(r.get("total_kb")), ratio(r.get("total_kb"), tg_m),
+            "; ".join(notes),
         ])
     return rows
 
 
 def targets(res):
+    """The random case's targets: [(label, figure, met: True/False/None for information)]."""
     out = []
     i, t, c = (res.get(k) for k in ("idmesh", "tetgen", "cgal"))
-    ok = lambda r: r is not None and "error" not in r  # noqa: E731
     if not ok(i):
         return [("idmesh", "did not run: " + (i or {}).get("error", "not run")[:80], False)]
     if ok(t):
@@ -440,43 +730,162 @@ def targets(res):
     return out
 
 
-def print_table(rows, markdown, out=sys.stdout):
+def case_label(name, case):
+    """A refinement case's short name with its switches, e.g. `cube -pq1.414a0.000002V`."""
+    return f"{name} -{case['switches']}{case.get('last_switch', '')}"
+
+
+def build_refine_rows(cases):
+    """Rows of the refinement table: one per case and tool."""
+    rows = []
+    for name, case in cases.items():
+        res = case["results"]
+        tg = res.get("tetgen", {})
+        tg = tg if ok(tg) else {}
+        label = case_label(name, case)
+        for tool in ("idmesh", "tetgen"):
+            r = res.get(tool)
+            if r is None:
+                continue
+            if "error" in r:
+                rows.append(error_row([label, tool], r, len(REFINE_HEADER)))
+                continue
+            notes = common_notes(r)
+            if tool == "idmesh":
+                if r.get("max_radius_edge") is not None:
+                    notes.append("max radius-edge %.3f" % r["max_radius_edge"])
+                v = case.get("verify")
+                if v:
+                    notes.append("verify3d " + ("OK" if v["ok"] else "FAILED: " + ", ".join(
+                        v.get("failed") or [v.get("error", "?")])))
+            elif r.get("refine_s") is not None:
+                notes.append("own = CPU; refinement %s s, optimization %s s" % (
+                    tfmt(r.get("refine_s")), tfmt(r.get("optimize_s"))))
+            rows.append([
+                label, tool, tfmt(r["time_s"]), tfmt(r["best_s"]),
+                ratio(r["time_s"], tg.get("time_s")), tfmt(r.get("meshing_s")),
+                ratio(r.get("meshing_s"), tg.get("meshing_s")), tfmt(r.get("cpu_s")),
+                count(r.get("tets")), ratio(r.get("tets"), tg.get("tets")),
+                count(r.get("vertices")), mb(r.get("total_kb")),
+                ratio(r.get("total_kb"), tg.get("total_kb")), "; ".join(notes),
+            ])
+    return rows
+
+
+def refine_targets(name, case):
+    """A refinement case's targets: time <= 1.0 x TetGen's (whole process), tets <= 1.3 x
+    TetGen's; own meshing times, memory and verify3d for information."""
+    res = case["results"]
+    i, t = res.get("idmesh"), res.get("tetgen")
+    if not ok(i):
+        return [(f"{name}: idmesh", "did not run: " + (i or {}).get("error", "not run")[:80],
+                 False)]
+    out = []
+    if ok(t):
+        r = i["time_s"] / t["time_s"]
+        out.append((f"{name}: time vs TetGen (whole process)", f"ratio {r:.2f} (target <= 1.0)",
+                    r <= 1.0))
+        r = i["tets"] / t["tets"]
+        out.append((f"{name}: tets vs TetGen", f"ratio {r:.2f} (target <= 1.3)", r <= 1.3))
+        if i.get("cpu_s") and t.get("cpu_s"):
+            r = i["cpu_s"] / t["cpu_s"]
+            out.append((f"    {name}: process CPU time vs TetGen's (for information)",
+                        f"ratio {r:.2f}", None))
+        if i.get("meshing_s") and t.get("meshing_s"):
+            r = i["meshing_s"] / t["meshing_s"]
+            out.append((f"    {name}: own meshing time vs TetGen's (for information)",
+                        f"ratio {r:.2f}", None))
+        if i.get("total_kb") and t.get("total_kb"):
+            r = i["total_kb"] / t["total_kb"]
+            out.append((f"    {name}: peak memory vs TetGen (for information)",
+                        f"ratio {r:.2f}", None))
+    else:
+        out.append((f"{name}: vs TetGen", "TetGen did not run", None))
+    v = case.get("verify")
+    if v:
+        text = "all checks pass" if v["ok"] else "failed: " + ", ".join(
+            v.get("failed") or [v.get("error", "?")])
+        out.append((f"{name}: verify3d of idmesh's mesh", f"{text} ({v['seconds']:.0f} s)",
+                    v["ok"]))
+    return out
+
+
+def print_table(rows, markdown, header=HEADER, out=sys.stdout):
+    if not rows:
+        return
     if markdown:
-        print("| " + " | ".join(HEADER) + " |", file=out)
-        print("|" + "|".join("---" if k in (0, len(HEADER) - 1) else "--:"
-                             for k in range(len(HEADER))) + "|", file=out)
+        print("| " + " | ".join(header) + " |", file=out)
+        text_cols = (0, 1, len(header) - 1) if header is REFINE_HEADER else (0, len(header) - 1)
+        print("|" + "|".join("---" if k in text_cols else "--:"
+                             for k in range(len(header))) + "|", file=out)
         for r in rows:
             print("| " + " | ".join(str(x) for x in r) + " |", file=out)
         return
-    widths = [max(len(str(r[k])) for r in rows + [HEADER]) for k in range(len(HEADER))]
-    line = "  ".join(h.ljust(w) for h, w in zip(HEADER, widths))
+    widths = [max(len(str(r[k])) for r in rows + [header]) for k in range(len(header))]
+    line = "  ".join(h.ljust(w) for h, w in zip(header, widths))
     print(line, file=out)
     print("-" * len(line), file=out)
     for r in rows:
         print("  ".join(str(x).ljust(w) for x, w in zip(r, widths)), file=out)
 
 
+def print_targets(items, markdown):
+    for label, text, met in items:
+        verdict = "" if met is None else (" — met" if met else " — NOT met")
+        print(("* " if markdown else "") + f"{label}: {text}{verdict}")
+
+
+def upgrade(report):
+    """A --json report from before the refinement cases (one random case) in today's form."""
+    if "cases" in report:
+        return report
+    random = {"kind": "random", "points": report["points"], "seed": report.get("seed"),
+              "results": report["results"]}
+    return dict(report, cases={"random": random})
+
+
 def render(report, markdown):
-    res, info = report["results"], report["machine"]
-    rows = build_rows(res)
+    """Prints the tables and target lists of a report (a fresh run or a saved --json)."""
+    report = upgrade(report)
+    info, cases = report["machine"], report["cases"]
+    heading = "## " if markdown else "== "
     if markdown:
-        print(f"# 3D Delaunay benchmark: {report['points']:,} random points\n")
+        print("# 3D benchmark: idmesh vs TetGen vs CGAL\n")
         print("Produced by `python3 bench/bench3d.py " + " ".join(report.get("argv", [])) +
               "`. Times are medians of fresh processes, tools interleaved.\n")
         print(f"Run {info['date']} on {info['nproc']} × {info['cpu']}, {info['memory']} RAM "
               f"({info['os']}).  ")
         print(f"idmesh {info['idmesh_commit']} ({info['rustc']}), TetGen {info['tetgen']} "
               f"(Debian), CGAL {info['cgal']} ({info['gxx']}, -O2).\n")
-    print_table(rows, markdown)
-    print()
-    for label, text, ok in targets(res):
-        verdict = "" if ok is None else (" — met" if ok else " — NOT met")
-        print(("* " if markdown else "") + f"{label}: {text}{verdict}")
+    random = cases.get("random")
+    if random:
+        print(f"{heading}Delaunay tetrahedralization of {random['points']:,} random points\n")
+        print_table(build_rows(random["results"]), markdown)
+        print()
+        print_targets(targets(random["results"]), markdown)
+        print()
+    refine = {k: c for k, c in cases.items() if c.get("kind") == "refine" and "results" in c}
+    skipped = {k: c for k, c in cases.items() if c.get("skipped")}
+    if refine or skipped:
+        print(f"{heading}Quality refinement, radius-edge {RADIUS_EDGE} and a volume bound "
+              "(time = whole process: read, mesh, write)\n")
+        for name, c in refine.items():
+            extra = f", domain volume {c['domain_volume']:g}" if c.get("domain_volume") else ""
+            print(("* " if markdown else "  ") + f"{name}: {c['input']}{extra}")
+        for name, c in skipped.items():
+            print(("* " if markdown else "  ") + f"{name}: skipped ({c['skipped']})")
+        print()
+        print_table(build_refine_rows(refine), markdown, REFINE_HEADER)
+        print()
+        for name, c in refine.items():
+            print_targets(refine_targets(name, c), markdown)
+        print()
     if markdown:
-        print("\nPer-run times in seconds, in run order:\n")
-        for tool, r in res.items():
-            if "times" in r:
-                print(f"* {tool}: " + ", ".join("%.3f" % t for t in r["times"]))
+        print("Per-run times in seconds, in run order:\n")
+        for name, c in cases.items():
+            for tool, r in c.get("results", {}).items():
+                if "times" in r:
+                    print(f"* {name}, {tool}: " + ", ".join("%.3f" % t for t in r["times"]))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -498,10 +907,13 @@ def prepare(workdir, n, seed):
     return bin_path, node_path, h
 
 
-def selftest(workdir, idmesh, cgal, use_tetgen):
+def selftest(workdir, exes, cgal, use_tetgen):
     """Checks that could fail: all tools read the same bits, the mesh is valid, and on points in
-    general position (unique Delaunay tetrahedralization) the three tools agree on counts."""
+    general position (unique Delaunay tetrahedralization) the three tools agree on counts; then a
+    coarse refinement of the unit cube through both command lines: outputs parsed, counts agree
+    with what the tools print, and (with ../shared) idmesh's mesh passes verify3d."""
     import numpy as np
+    idmesh = exes.get("points")
     failures = []
 
     def check(cond, what):
@@ -537,6 +949,31 @@ def selftest(workdir, idmesh, cgal, use_tetgen):
         check("error" not in r, f"{tool} ran ({r.get('error', 'ok')})")
     counts = {t: (r.get("tets"), r.get("hull_faces")) for t, r in res.items()}
     check(len(set(counts.values())) == 1, f"tet and hull-face counts agree: {counts}")
+
+    volume = "0.001"
+    polys = prepare_refine(workdir, "cube", ["idmesh"] + (["tetgen"] if use_tetgen else []))
+    switches = f"pq{RADIUS_EDGE}a{volume}V"
+    if exes.get("cli"):
+        r = refine_child("idmesh", exes["cli"], polys["idmesh"], switches, 300, keep=True)
+        kept = r.get("kept_stem")
+        check("error" not in r, f"idmesh tetgen -{switches} ran ({r.get('error', 'ok')})")
+        check(r.get("meshing_s") is not None and r.get("read_s") is not None,
+              "idmesh's 'Time: reading ... meshing ... writing' line parsed")
+        check(r.get("tets") is not None and r.get("tets") == r.get("stdout_tets"),
+              f"idmesh's .ele header agrees with its printed count ({r.get('tets')})")
+        check(abs((r.get("volume") or 0.0) - 1.0) < 1e-9, "idmesh meshed volume 1")
+        if os.path.exists(VERIFY3D) and kept:
+            v = verify_mesh(polys["idmesh"], kept, volume, 300)
+            check(v["ok"], f"verify3d passes idmesh's cube mesh ({v})")
+        if kept:
+            remove_outputs(kept)
+    if use_tetgen:
+        r = refine_child("tetgen", "tetgen", polys["tetgen"], switches, 300)
+        check("error" not in r, f"tetgen -{switches} ran ({r.get('error', 'ok')})")
+        check(r.get("meshing_s") is not None and r.get("refine_s") is not None,
+              "TetGen's -V timings parsed")
+        check(r.get("tets") is not None and r.get("tets") == r.get("stdout_tets"),
+              f"TetGen's .ele header agrees with its printed count ({r.get('tets')})")
     if failures:
         log(f"{len(failures)} self-test check(s) failed")
         return 1
@@ -544,13 +981,141 @@ def selftest(workdir, idmesh, cgal, use_tetgen):
     return 0
 
 
+def prepare_refine(workdir, name, tools):
+    """Gives each tool its own copy of a refinement case's .poly file, in
+    workdir/NAME/TOOL/, so that their outputs do not clash. Returns {tool: path}, or None if
+    the input is absent. The cube's .poly file is written to workdir/cube/cube.poly."""
+    spec = REFINE_CASES[name]
+    src = spec["source"]
+    casedir = os.path.join(workdir, name)
+    os.makedirs(casedir, exist_ok=True)
+    if src is None:
+        src = os.path.join(casedir, "cube.poly")
+        write_cube_poly(src)
+    elif not os.path.exists(src):
+        return None
+    out = {}
+    for tool in tools:
+        d = os.path.join(casedir, tool)
+        os.makedirs(d, exist_ok=True)
+        out[tool] = os.path.join(d, os.path.basename(src))
+        shutil.copyfile(src, out[tool])
+    return out
+
+
+def run_random(a, exes, cgal, use_tetgen):
+    """The random case: idmesh's bench3d_points, TetGen on the .node file and CGAL, interleaved.
+    Returns the case's report entry."""
+    n = a.points or (QUICK_POINTS if a.quick else FULL_POINTS)
+    bin_path, node_path, h = prepare(a.workdir, n, a.seed)
+    idmesh = exes.get("points")
+    tools = {}
+    if idmesh:
+        # The first idmesh run also checks its mesh exactly, after the timed call.
+        tools["idmesh"] = lambda rep: json_child(
+            [idmesh, str(n), str(a.seed)] + (["--validate"] if rep == 0 else []), a.timeout)
+    if use_tetgen:
+        tools["tetgen"] = lambda rep: tetgen_child(node_path, a.workdir, a.timeout)
+    if cgal:
+        tools["cgal"] = lambda rep: json_child([cgal, bin_path], a.timeout)
+
+    def check(r):
+        if "input_hash" in r and r["input_hash"] != h:
+            return f"input hash {r['input_hash']} != {h}: different coordinates"
+        if r.get("input_points") not in (None, n):
+            return f"read {r.get('input_points')} points, expected {n}"
+        return None
+
+    log(f"== random: Delaunay of {n:,} random points (seed {a.seed}), {a.repeat} runs per tool")
+    runs = interleaved(tools, a.repeat, a.wait_idle, check)
+    results = {tool: summarise(rs) for tool, rs in runs.items()}
+    if not idmesh:
+        results["idmesh"] = {"error": exes.get("error") or "not built"}
+    return {"kind": "random", "points": n, "seed": a.seed, "results": results}
+
+
+def run_refine(name, a, exes, use_tetgen):
+    """A refinement case: both command lines on their own copies of the same .poly file,
+    interleaved; with --verify, verify3d on the first idmesh mesh. Returns the report entry."""
+    spec = REFINE_CASES[name]
+    volume = spec["quick" if a.quick else "full"]
+    switches = f"pq{RADIUS_EDGE}a{volume}"
+    last = "Q" if a.quiet else "V"
+    idmesh = exes.get("cli")
+    tool_names = (["idmesh"] if idmesh else []) + (["tetgen"] if use_tetgen else [])
+    polys = prepare_refine(a.workdir, name, tool_names)
+    if polys is None:
+        why = f"{spec['source']} is absent (../shared is not next to the repository)"
+        log(f"== {name}: skipped: {why}")
+        return {"kind": "refine", "skipped": why}
+    shown = os.path.relpath(spec["source"], ROOT) if spec["source"] else "written by the script"
+    n, lo, hi = poly_extent(spec["source"] or os.path.join(a.workdir, name, "cube.poly"))
+    extent = " x ".join(f"[{l:g}, {h:g}]" for l, h in zip(lo, hi))
+    case = {"kind": "refine", "title": spec["title"], "input": f"{spec['title']} ({shown}): "
+            f"{n} points, extent {extent}", "volume": volume, "switches": switches,
+            "results": {}}
+    log(f"== {name}: {case['input']}; -{switches}{last}, {a.repeat} runs per tool")
+    case["last_switch"] = last
+    tools = {}
+    if idmesh:
+        tools["idmesh"] = lambda rep: refine_child(
+            "idmesh", idmesh, polys["idmesh"], switches + last, a.timeout,
+            keep=a.verify and rep == 0)
+    if use_tetgen:
+        tools["tetgen"] = lambda rep: refine_child("tetgen", "tetgen", polys["tetgen"],
+                                                   switches + last, a.timeout)
+    runs = interleaved(tools, a.repeat, a.wait_idle)
+    case["results"] = {tool: summarise(rs) for tool, rs in runs.items()}
+    if not idmesh:
+        case["results"]["idmesh"] = {"error": exes.get("error") or "not built"}
+    vols = [r["volume"] for r in runs.get("idmesh", []) if r.get("volume")]
+    if vols:
+        case["domain_volume"] = vols[0]
+    if a.verify and idmesh:
+        stem = runs["idmesh"][0].get("kept_stem")
+        if not os.path.exists(VERIFY3D):
+            log(f"   verify3d skipped: {VERIFY3D} is absent")
+        elif not stem:
+            log("   verify3d skipped: the first idmesh run failed")
+        else:
+            log("   verify3d on idmesh's first mesh (untimed; slow for 1M tets)")
+            case["verify"] = verify_mesh(polys["idmesh"], stem, volume, a.verify_timeout)
+            log(f"   verify3d: {case['verify']}")
+        if stem:
+            remove_outputs(stem)
+    return case
+
+
+def parse_cases(text):
+    """The --cases list, checked; refinement cases first (run_child explains why)."""
+    names = [c.strip() for c in text.split(",") if c.strip()]
+    bad = [c for c in names if c not in ALL_CASES]
+    if bad or not names:
+        raise SystemExit(f"--cases: unknown {bad}; choose from {','.join(ALL_CASES)}")
+    # The random case imports numpy and builds big arrays, which raise the script's own RSS, the
+    # floor of every later child's wait4() peak; so it runs last.
+    return [c for c in names if c != "random"] + [c for c in names if c == "random"]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--quick", action="store_true", help=f"{QUICK_POINTS:,} points")
+    ap.add_argument("--cases", default=",".join(ALL_CASES),
+                    help="comma-separated cases to run (default: %(default)s)")
+    ap.add_argument("--quick", action="store_true",
+                    help=f"{QUICK_POINTS:,} points; ~100k-tet volume bounds for the refinement "
+                         "cases")
     ap.add_argument("--points", type=int, help="number of points (overrides --quick)")
     ap.add_argument("--seed", type=int, default=SEED)
     ap.add_argument("--repeat", type=int, default=3, help="runs per tool (median time)")
+    ap.add_argument("--verify", action="store_true",
+                    help="check the first idmesh mesh of each refinement case with "
+                         "../shared/tools/verify3d.py (untimed; ~40 s per 1M-tet mesh)")
+    ap.add_argument("--quiet", action="store_true",
+                    help="refinement runs end their switches with Q instead of V: no own "
+                         "timings, and neither tool computes its closing statistics")
+    ap.add_argument("--verify-timeout", type=float, default=3600.0,
+                    help="seconds per verify3d run")
     ap.add_argument("--markdown", action="store_true", help="emit a Markdown table")
     ap.add_argument("--no-cgal", action="store_true")
     ap.add_argument("--no-tetgen", action="store_true")
@@ -563,59 +1128,40 @@ def main():
     ap.add_argument("--render", metavar="JSON",
                     help="print the table of a saved --json run again, without running anything")
     ap.add_argument("--selftest", action="store_true",
-                    help="quick consistency checks of the three tools' inputs and outputs")
+                    help="quick consistency checks of the tools' inputs and outputs")
     a = ap.parse_args()
 
     if a.render:
         with open(a.render) as f:
             render(json.load(f), a.markdown)
         return 0
-    ensure_numpy()
+    cases = ALL_CASES if a.selftest else parse_cases(a.cases)
+    want_random = "random" in cases
+    if want_random:
+        ensure_numpy()
     os.makedirs(a.workdir, exist_ok=True)
-    apt_ok = ensure_apt_deps(not a.no_cgal, not a.no_tetgen)
+    want_cgal = want_random and not a.no_cgal
+    apt_ok = ensure_apt_deps(want_cgal, not a.no_tetgen)
     use_tetgen = not a.no_tetgen and shutil.which("tetgen") is not None
-    idmesh, idmesh_err = build_idmesh()
+    exes, err = build_idmesh(want_random, any(c != "random" for c in cases))
+    if err:
+        exes["error"] = err
     cgal = None
-    if not a.no_cgal and apt_ok:
+    if want_cgal and apt_ok:
         try:
             cgal = build_cgal(a.workdir)
         except (OSError, subprocess.CalledProcessError) as e:
             log(f"CGAL build failed ({e}); CGAL skipped")
     if a.selftest:
-        return selftest(a.workdir, idmesh, cgal, use_tetgen)
+        return selftest(a.workdir, exes, cgal, use_tetgen)
 
-    n = a.points or (QUICK_POINTS if a.quick else FULL_POINTS)
-    bin_path, node_path, h = prepare(a.workdir, n, a.seed)
-    tools = {
-        "idmesh": (lambda first: json_child(
-            [idmesh, str(n), str(a.seed)] + (["--validate"] if first else []), a.timeout))
-        if idmesh else None,
-        "tetgen": (lambda first: tetgen_child(node_path, a.workdir, a.timeout))
-        if use_tetgen else None,
-        "cgal": (lambda first: json_child([cgal, bin_path], a.timeout)) if cgal else None,
-    }
-    runs = {t: [] for t, f in tools.items() if f}
-    log(f"== Delaunay of {n:,} random points (seed {a.seed}), {a.repeat} runs per tool")
-    for rep in range(a.repeat):
-        for tool, fn in tools.items():
-            if not fn:
-                continue
-            busy = wait_for_quiet(a.wait_idle)
-            # The first idmesh run also checks its mesh exactly, after the timed call.
-            r = fn(rep == 0)
-            r["busy_cores_before"] = round(busy, 2)
-            if "error" not in r and "input_hash" in r and r["input_hash"] != h:
-                r = {"error": f"input hash {r['input_hash']} != {h}: different coordinates"}
-            if "error" not in r and r.get("input_points") not in (None, n):
-                r = {"error": f"read {r.get('input_points')} points, expected {n}"}
-            runs[tool].append(r)
-            msg = r.get("error") or "%.3f s, %s tets" % (r["time_s"], r.get("tets"))
-            log(f"   {tool:7s} run {rep + 1}: {msg}")
-    results = {tool: summarise(rs) for tool, rs in runs.items()}
-    if not idmesh:
-        results["idmesh"] = {"error": idmesh_err or "not built"}
-    report = {"machine": machine_info(), "points": n, "seed": a.seed, "repeat": a.repeat,
-              "argv": sys.argv[1:], "results": results}
+    report = {"machine": machine_info(), "repeat": a.repeat, "quick": a.quick,
+              "argv": sys.argv[1:], "cases": {}}
+    for name in cases:
+        if name == "random":
+            report["cases"][name] = run_random(a, exes, cgal, use_tetgen)
+        else:
+            report["cases"][name] = run_refine(name, a, exes, use_tetgen)
     if a.json:
         with open(a.json, "w") as f:
             json.dump(report, f, indent=1)

@@ -261,7 +261,6 @@ fn cylinder_volume(n: usize) {
 }
 
 #[test]
-#[ignore = "idmesh bug A: radius_edge 1.414 + max_volume on the 8-gon prism never completes (Steiner cap 200000 hit, the mesh has ~300 vertices); see bug_a_*"]
 fn cylinder_8_quality_volume() {
     cylinder_volume(8);
 }
@@ -519,7 +518,6 @@ const BOX_FACETS: [(&[u32], i32); 6] = [
 ];
 
 #[test]
-#[ignore = "idmesh bug A: radius_edge + max_volume on this rotated unit cube never completes: complete == false at max_steiner 20000 with ~310 vertices in the mesh (also with radius_edge 100; either bound alone completes)"]
 fn bug_a_rotated_cube_quality_volume_completes() {
     // The unit cube under the exact 3-4-5 rotation about z, scaled by 5/4.
     let points = [
@@ -550,7 +548,6 @@ fn bug_a_rotated_cube_quality_volume_completes() {
 }
 
 #[test]
-#[ignore = "idmesh bug A: radius_edge 1.414 + max_volume on this triangular prism never completes (Steiner cap hit with ~280 Steiner points in the mesh)"]
 fn bug_a_triangular_prism_quality_volume_completes() {
     let tri = [[0.59375, 0.0], [-0.296875, 0.515625], [-0.671875, -1.3125]];
     let plc = prism_plc(&tri, None, 0.0, 1.8125, &Frame::identity());
@@ -579,7 +576,6 @@ fn bug_a_triangular_prism_quality_volume_completes() {
 }
 
 #[test]
-#[ignore = "idmesh bug B: a flat tet (all four vertices on the rotated bottom facet, volume 3.6e-20) is kept in the mesh"]
 fn bug_b_no_flat_tet_on_rotated_facet() {
     let points = [
         [0.5234375, 0.947265625, 0.724609375],
@@ -737,7 +733,6 @@ fn bug_d_rotated_split_box_meets_radius_edge_2() {
 }
 
 #[test]
-#[ignore = "idmesh bug E: tetrahedralize fails with Internal(caught a panic: cavity of vertex 365 is not star-shaped (new tet 1665 is flat or inverted)) on two stacked rotated boxes, radius_edge 1.414 + max_volume"]
 fn bug_e_rotated_stacked_boxes_no_panic() {
     // Boxes [0, 1]² × [0, 0.5] and [0, 1]² × [0.5, 1.625] (sharing the facet z = 0.5), rotated
     // by the quaternion (6, 0, 0, 1) and divided by 32 (exact).
@@ -785,7 +780,6 @@ fn bug_e_rotated_stacked_boxes_no_panic() {
 }
 
 #[test]
-#[ignore = "idmesh bug F: tetrahedralize fails with Internal(facet point 213 refused) on a rotated triangular prism with a thin quadrilateral hole through it, radius_edge 2.0"]
 fn bug_f_prism_with_thin_hole_radius_edge_2() {
     // Found by prism_rotated_q2 (a rotation about z by the quaternion (6, 0, 0, -1), so the
     // top and bottom stay horizontal); written here in the rotated frame.

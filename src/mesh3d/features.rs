@@ -270,14 +270,17 @@ impl Features {
     /// flat; with Steiner points rounded off a slanted facet it is a rounding sliver lying in
     /// the facet, which no refinement can improve (its circumcenter is far away).
     pub fn in_one_facet(&self, t: [u32; 4]) -> bool {
-        if !t.iter().all(|&v| self.is_feature(v)) {
-            return false;
+        self.common_facet(&t).is_some()
+    }
+
+    /// A facet containing all the given feature vertices, if there is one.
+    pub fn common_facet(&self, vs: &[u32]) -> Option<u32> {
+        if !vs.iter().all(|&v| self.is_feature(v)) {
+            return None;
         }
-        let Some(f0) = self.vert_facets.get(&t[0]) else {
-            return false;
-        };
-        f0.iter().any(|f| {
-            t[1..]
+        let f0 = self.vert_facets.get(&vs[0])?;
+        f0.iter().copied().find(|f| {
+            vs[1..]
                 .iter()
                 .all(|v| self.vert_facets.get(v).is_some_and(|fs| fs.contains(f)))
         })

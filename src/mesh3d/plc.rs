@@ -871,13 +871,53 @@ impl Mesher<'_> {
         }
     }
 
+    /// Rounding slivers at the domain's boundary, which the output leaves out: tets inside
+    /// the domain whose four vertices lie on one facet (flat in exact terms; Steiner points
+    /// rounded off a slanted facet make them) and that touch the outside, directly or through
+    /// other such slivers. Their other faces, which lie in the same facet, become the
+    /// boundary. Slivers in internal facets stay (dropping them would tear the mesh apart).
+    fn rounding_slivers_on_boundary(&self) -> crate::hash::FastSet<u32> {
+        let mut cand: Vec<u32> = (0..self.tets.num_slots() as u32)
+            .filter(|&t| {
+                self.tets.alive(t)
+                    && !self.tets.is_ghost(t)
+                    && self.region[t as usize] != OUTSIDE
+                    && self.feat.in_one_facet(self.tets.verts(t))
+            })
+            .collect();
+        let mut dropped = crate::hash::FastSet::default();
+        loop {
+            let before = dropped.len();
+            cand.retain(|&t| {
+                let out = (0..4).any(|f| {
+                    let n = self.tets.neighbor(t, f).0;
+                    self.tets.is_ghost(n)
+                        || self.region[n as usize] == OUTSIDE
+                        || dropped.contains(&n)
+                });
+                if out {
+                    dropped.insert(t);
+                }
+                !out
+            });
+            if dropped.len() == before {
+                return dropped;
+            }
+        }
+    }
+
     fn output(&self, plc: &Plc) -> Result<TetMesh, Error> {
         let ns = self.tets.num_slots();
+        let dropped = self.rounding_slivers_on_boundary();
         let mut index = vec![NONE; ns];
         let mut tets = Vec::new();
         let mut slots = Vec::new();
         for t in 0..ns as u32 {
-            if self.tets.alive(t) && !self.tets.is_ghost(t) && self.region[t as usize] != OUTSIDE {
+            if self.tets.alive(t)
+                && !self.tets.is_ghost(t)
+                && self.region[t as usize] != OUTSIDE
+                && !dropped.contains(&t)
+            {
                 index[t as usize] = tets.len() as u32;
                 let mut v = self.tets.verts(t);
                 let c = v.map(|x| self.pts[x as usize]);
@@ -917,7 +957,8 @@ impl Mesher<'_> {
             Vec::new()
         };
         // Subfaces with the domain on at least one side (a facet between two holes is not
-        // part of the mesh): the subfaces among the faces of the output tets.
+        // part of the mesh): the subfaces among the faces of the output tets; and the boundary
+        // faces that a dropped rounding sliver uncovered, which lie in its facet.
         let mut faces: Vec<([u32; 3], u32)> = Vec::new();
         for &t in &slots {
             let vs = self.tets.verts(t);
@@ -925,6 +966,10 @@ impl Mesher<'_> {
                 let fv = face_of(vs, f);
                 if let Some(fid) = self.feat.subface(fv) {
                     faces.push((fkey(fv), fid));
+                } else if !dropped.is_empty() && dropped.contains(&self.tets.neighbor(t, f).0) {
+                    if let Some(fid) = self.feat.common_facet(&fv) {
+                        faces.push((fkey(fv), fid));
+                    }
                 }
             }
         }

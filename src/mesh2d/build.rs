@@ -276,8 +276,7 @@ fn insert_points(cdt: &mut Cdt, points: &[[f64; 2]]) -> Result<(), Error> {
         if k == 0 || k == b_pos || k == c_pos {
             continue;
         }
-        let p = points[i as usize];
-        match cdt.insert(p, Start::Walk(cdt.hint), Mode::Force, NONE, Some(i)) {
+        match cdt.insert_bulk(i) {
             Inserted::Yes(_) => {}
             Inserted::Duplicate(u) => {
                 return Err(InputError::DuplicatePoint {
@@ -293,6 +292,7 @@ fn insert_points(cdt: &mut Cdt, points: &[[f64; 2]]) -> Result<(), Error> {
             }
         }
     }
+    cdt.sync_aux();
     Ok(())
 }
 

@@ -11,7 +11,7 @@
 //! steps 5–6): a `Provisional` insertion aborts and hands the segment back; a `Force` insertion
 //! queues the segment for splitting and continues.
 
-use crate::predicates::{encroaches, incircle, orient2d, strictly_between};
+use crate::predicates::{encroaches, incircle, incircle_fast, orient2d, strictly_between};
 
 use super::NONE;
 
@@ -124,6 +124,10 @@ pub struct Cdt {
     pub(super) rec: super::recover::Scratch,
     /// The last triangle created (a walking hint).
     pub hint: TriId,
+    /// Scratch of [`Cdt::insert_bulk`]: half-edges still to cross, and the cavity boundary
+    /// as `[outer twin, q, r]` in counter-clockwise order.
+    bulk_stack: Vec<u32>,
+    bulk_bnd: Vec<[u32; 3]>,
 }
 
 #[inline]
@@ -179,6 +183,8 @@ impl Cdt {
             carved: false,
             rec: Default::default(),
             hint: 0,
+            bulk_stack: Vec::new(),
+            bulk_bnd: Vec::new(),
         }
     }
 
@@ -523,6 +529,192 @@ impl Cdt {
             }
         }
         ghost_hit
+    }
+
+    /// A slot for [`Cdt::insert_bulk`]: only `tv` and `tn` grow; the other per-triangle
+    /// arrays catch up in [`Cdt::sync_aux`].
+    #[inline]
+    fn alloc_bulk(&mut self) -> TriId {
+        if let Some(t) = self.free.pop() {
+            return t;
+        }
+        let t = self.tv.len() as TriId;
+        self.tv.push([NONE; 3]);
+        self.tn.push([NONE; 3]);
+        t
+    }
+
+    /// Brings the per-triangle arrays other than `tv` and `tn` to the slot count, with the
+    /// values a fresh slot gets (after [`Cdt::insert_bulk`]).
+    pub fn sync_aux(&mut self) {
+        let n = self.tv.len();
+        self.ts.resize(n, [NONE; 3]);
+        self.treg.resize(n, NO_REGION);
+        self.tflat.resize(n, false);
+        self.stamp.resize(n, 0);
+    }
+
+    /// [`Cdt::conflict`] for triangle corners `v` while no triangle is flat (before any
+    /// segment exists).
+    #[inline(always)]
+    fn conflict_plain(&self, v: [VertexId; 3], p: [f64; 2]) -> bool {
+        let g = self.ghost;
+        if v[0] == g || v[1] == g || v[2] == g {
+            let (a, b) = if v[0] == g {
+                (v[1], v[2])
+            } else if v[1] == g {
+                (v[2], v[0])
+            } else {
+                (v[0], v[1])
+            };
+            let (a, b) = (self.p(a), self.p(b));
+            let o = orient2d(a, b, p);
+            o > 0.0 || (o == 0.0 && strictly_between(a, b, p))
+        } else {
+            incircle_fast(self.p(v[0]), self.p(v[1]), self.p(v[2]), p) > 0.0
+        }
+    }
+
+    /// Visibility walk without walls from `start` to the triangle containing `p` (or a ghost
+    /// when `p` is outside the hull). The edge the walk came in through is not tested again:
+    /// `p` lies strictly beyond it (the same exact orientation, seen from the other side).
+    /// `None` when the budget runs out.
+    fn walk_plain(&self, start: TriId, p: [f64; 2]) -> Option<TriId> {
+        let g = self.ghost;
+        let mut t = start;
+        let v = self.tv[t as usize];
+        if v[0] == g || v[1] == g || v[2] == g {
+            let k = (0..3).find(|&k| v[k] == g).unwrap_or(0);
+            t = self.tn[t as usize][k] / 3;
+        }
+        // `from`: the edge of `t` the walk entered through (3: none).
+        let mut from = 3usize;
+        let budget = 4 * self.tv.len() + 64;
+        for _ in 0..budget {
+            let v = self.tv[t as usize];
+            if v[0] == g || v[1] == g || v[2] == g {
+                return Some(t);
+            }
+            let pv = [self.p(v[0]), self.p(v[1]), self.p(v[2])];
+            let start_edge = if from == 3 { 0 } else { next(from) };
+            let mut moved = false;
+            let mut i = start_edge;
+            for _ in 0..3 {
+                if i != from && orient2d(pv[next(i)], pv[prev(i)], p) < 0.0 {
+                    let tw = self.tn[t as usize][i];
+                    t = tw / 3;
+                    from = (tw % 3) as usize;
+                    moved = true;
+                    break;
+                }
+                i = next(i);
+            }
+            if !moved {
+                return Some(t);
+            }
+        }
+        None
+    }
+
+    /// Inserts input vertex `pv` (already in `pts`) while the mesh has no segment and nothing
+    /// is carved: the Bowyer–Watson step of [`Cdt::insert`] for `Mode::Force` without walls.
+    /// Without walls the cavity (the triangles whose circumcircle holds `p` strictly, or ghosts
+    /// `p` sees) is a topological disk whose dual graph is a tree and whose vertices all lie
+    /// on its boundary, and `p` sees every boundary edge strictly. So the depth-first search
+    /// needs no marks, and visiting each triangle's edges in counter-clockwise order yields
+    /// the boundary in counter-clockwise order, which links the new fan directly.
+    /// Only `tv` and `tn` are kept up to date; call [`Cdt::sync_aux`] afterwards.
+    pub fn insert_bulk(&mut self, pv: VertexId) -> Inserted {
+        debug_assert!(self.segs.is_empty() && !self.carved);
+        let p = self.pts[pv as usize];
+        let mut t = match self.walk_plain(self.hint, p) {
+            Some(t) => t,
+            None => {
+                self.sync_aux();
+                match self.scan_locate(p) {
+                    Some(t) => t,
+                    None => return Inserted::LostWalk,
+                }
+            }
+        };
+        let v = self.tv[t as usize];
+        for &u in &v {
+            if u != self.ghost && self.pts[u as usize] == p {
+                return Inserted::Duplicate(u);
+            }
+        }
+        if !self.conflict_plain(v, p) {
+            // See `insert`: a point on the line of a hull edge but outside it.
+            let mut found = NONE;
+            for i in 0..3 {
+                let n = self.tn[t as usize][i] / 3;
+                if self.conflict_plain(self.tv[n as usize], p) {
+                    found = n;
+                    break;
+                }
+            }
+            if found == NONE {
+                return Inserted::LostWalk;
+            }
+            t = found;
+        }
+        let mut cavity = std::mem::take(&mut self.cavity);
+        let mut stack = std::mem::take(&mut self.bulk_stack);
+        let mut bnd = std::mem::take(&mut self.bulk_bnd);
+        cavity.clear();
+        stack.clear();
+        bnd.clear();
+        cavity.push(t);
+        stack.extend_from_slice(&[3 * t + 2, 3 * t + 1, 3 * t]);
+        while let Some(h) = stack.pop() {
+            let tw = self.tn[(h / 3) as usize][(h % 3) as usize];
+            let n = tw / 3;
+            let j = (tw % 3) as usize;
+            let nv = self.tv[n as usize];
+            if self.conflict_plain(nv, p) {
+                cavity.push(n);
+                // Edge `j` of `n` runs r → q; its other edges, counter-clockwise from q.
+                stack.push(3 * n + prev(j) as u32);
+                stack.push(3 * n + next(j) as u32);
+            } else {
+                bnd.push([tw, nv[prev(j)], nv[next(j)]]);
+            }
+        }
+        let result = self.fill_bulk(pv, &mut cavity, &bnd);
+        self.cavity = cavity;
+        self.bulk_stack = stack;
+        self.bulk_bnd = bnd;
+        result
+    }
+
+    /// The fan from `pv` over the boundary `bnd` (counter-clockwise, see
+    /// [`Cdt::insert_bulk`]), reusing the cavity's slots.
+    fn fill_bulk(&mut self, pv: VertexId, cavity: &mut Vec<TriId>, bnd: &[[u32; 3]]) -> Inserted {
+        let nb = bnd.len();
+        // A disk of `k` triangles has `k + 2` boundary edges forming one closed chain; check
+        // it before changing anything (it always holds with exact predicates).
+        if nb != cavity.len() + 2 || (0..nb).any(|k| bnd[k][2] != bnd[(k + 1) % nb][1]) {
+            return Inserted::LostWalk;
+        }
+        let a = self.alloc_bulk();
+        cavity.push(a);
+        let b = self.alloc_bulk();
+        cavity.push(b);
+        let mut prev_t = cavity[nb - 1];
+        for k in 0..nb {
+            let t = cavity[k];
+            let next_t = if k + 1 < nb { cavity[k + 1] } else { cavity[0] };
+            let [outer, q, r] = bnd[k];
+            let tu = t as usize;
+            self.tv[tu] = [pv, q, r];
+            self.tn[tu] = [outer, 3 * next_t + 2, 3 * prev_t + 1];
+            self.tn[(outer / 3) as usize][(outer % 3) as usize] = 3 * t;
+            self.vtri[q as usize] = t;
+            prev_t = t;
+        }
+        self.vtri[pv as usize] = cavity[0];
+        self.hint = cavity[0];
+        Inserted::Yes(pv)
     }
 
     /// Queues segment `s` for splitting (once); fixed segments are never split.

@@ -66,7 +66,7 @@ pub(super) fn run_with(
             break;
         }
     }
-    let mesh = output(&r, n, pslg, opts)?;
+    let mesh = output(&mut r, n, pslg, opts)?;
     // Never hand back a broken mesh as a success: the structural invariants are cheap to
     // check; the exact empty-circle check runs too in debug builds and in `validate()`. With
     // fixed segments the mesh is only constrained Delaunay; its local test is cheap, so it
@@ -267,33 +267,48 @@ fn insert_points(cdt: &mut Cdt, points: &[[f64; 2]]) -> Result<(), Error> {
     }
     let c_pos = c_pos.ok_or(InputError::AllCollinear)?;
     let c = order[c_pos];
+    // Triangulate the points renamed by their rank in `order`, stored in that order, so that
+    // consecutive insertions touch neighbouring memory; the names go back afterwards.
+    let n = points.len();
+    let mut ranked: Vec<[f64; 2]> = Vec::with_capacity(n + 1);
+    ranked.extend(order.iter().map(|&i| points[i as usize]));
+    ranked.push(cdt.pts[n]);
+    let input_pts = std::mem::replace(&mut cdt.pts, ranked);
+    let (b_r, c_r) = (b_pos as u32, c_pos as u32);
     if orient2d(pa, pb, points[c as usize]) > 0.0 {
-        cdt.init_triangle(a, b, c);
+        cdt.init_triangle(0, b_r, c_r);
     } else {
-        cdt.init_triangle(a, c, b);
+        cdt.init_triangle(0, c_r, b_r);
     }
-    for (k, &i) in order.iter().enumerate() {
+    let mut result = Ok(());
+    for k in 0..n {
         if k == 0 || k == b_pos || k == c_pos {
             continue;
         }
-        match cdt.insert_bulk(i) {
+        let i = order[k];
+        match cdt.insert_bulk(k as u32) {
             Inserted::Yes(_) => {}
             Inserted::Duplicate(u) => {
-                return Err(InputError::DuplicatePoint {
+                let u = order[u as usize];
+                result = Err(InputError::DuplicatePoint {
                     first: u.min(i) as usize,
                     second: u.max(i) as usize,
                 }
-                .into())
+                .into());
+                break;
             }
             other => {
-                return Err(Error::Internal(format!(
+                result = Err(Error::Internal(format!(
                     "inserting input point {i}: {other:?}"
-                )))
+                )));
+                break;
             }
         }
     }
+    cdt.pts = input_pts;
+    cdt.rename_vertices(&order);
     cdt.sync_aux();
-    Ok(())
+    result
 }
 
 /// One piece of an input segment after splitting it at input points lying on it.
@@ -658,38 +673,49 @@ fn flood(cdt: &mut Cdt, stack: &mut Vec<u32>, label: u32) {
 }
 
 /// Builds the output: domain triangles, input vertices at their input index, used Steiner
-/// vertices after them, subsegments on domain edges.
-fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
-    let cdt = &r.cdt;
-    let in_domain = |t: u32| {
+/// vertices after them, subsegments on domain edges. The triangle and neighbour tables are
+/// built in place in the store's `tv` and `tn` (compacting forwards: a triangle's output
+/// index never exceeds its slot), and the vertex table reuses `pts`, so the store is spent
+/// afterwards.
+fn output(r: &mut Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
+    let complete = r.complete;
+    let cdt = &mut r.cdt;
+    let in_domain = |cdt: &Cdt, t: u32| {
         let reg = cdt.treg[t as usize];
         cdt.alive(t) && reg != EXTERIOR && reg != HOLE && !cdt.is_ghost(t)
     };
     let nv = cdt.pts.len();
-    let mut vmap = vec![NONE; nv];
-    for (i, m) in vmap.iter_mut().enumerate().take(n) {
-        *m = i as u32;
-    }
-    let mut tmap = vec![NONE; cdt.num_slots()];
+    let nslots = cdt.num_slots();
+    // Input vertices keep their index; `smap` numbers the used Steiner vertices (cdt index
+    // `n + 1 + k`, after the ghost) in order of first use.
+    let mut smap = vec![NONE; nv - n - 1];
+    let vmap = |smap: &[u32], v: u32| {
+        match (v as usize).cmp(&n) {
+            std::cmp::Ordering::Less => v,
+            std::cmp::Ordering::Equal => NONE, // the ghost
+            std::cmp::Ordering::Greater => smap[v as usize - n - 1],
+        }
+    };
+    let mut tmap = vec![NONE; nslots];
     let mut ntri = 0u32;
     let mut next_v = n as u32;
-    let mut vertices: Vec<[f64; 2]> = pslg.points.clone();
+    let mut steiner: Vec<[f64; 2]> = Vec::new();
     let mut vertex_markers: Vec<i32> = if pslg.point_markers.is_empty() {
         vec![0; n]
     } else {
         pslg.point_markers.clone()
     };
-    for t in 0..cdt.num_slots() as u32 {
-        if !in_domain(t) {
+    for t in 0..nslots as u32 {
+        if !in_domain(cdt, t) {
             continue;
         }
         tmap[t as usize] = ntri;
         ntri += 1;
         for &v in &cdt.tv[t as usize] {
-            if vmap[v as usize] == NONE {
-                vmap[v as usize] = next_v;
+            if (v as usize) > n && smap[v as usize - n - 1] == NONE {
+                smap[v as usize - n - 1] = next_v;
                 next_v += 1;
-                vertices.push(cdt.pts[v as usize]);
+                steiner.push(cdt.pts[v as usize]);
                 let s = cdt.vseg[v as usize];
                 let marker = if s != NONE {
                     segment_marker(pslg, s as usize)
@@ -698,32 +724,6 @@ fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriMesh,
                 };
                 vertex_markers.push(marker);
             }
-        }
-    }
-    let mut triangles = Vec::with_capacity(ntri as usize);
-    let mut neighbors = Vec::with_capacity(ntri as usize);
-    let mut attrs = Vec::new();
-    for t in 0..cdt.num_slots() as u32 {
-        if tmap[t as usize] == NONE {
-            continue;
-        }
-        let v = cdt.tv[t as usize];
-        triangles.push(v.map(|x| vmap[x as usize]));
-        let nb = cdt.tn[t as usize].map(|h| {
-            if h == NONE {
-                NONE
-            } else {
-                tmap[(h / 3) as usize]
-            }
-        });
-        neighbors.push(nb);
-        if opts.region_attributes {
-            let reg = cdt.treg[t as usize];
-            attrs.push(if reg == NO_REGION {
-                0.0
-            } else {
-                pslg.regions[reg as usize].attribute
-            });
         }
     }
     let mut segments = Vec::new();
@@ -735,7 +735,7 @@ fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriMesh,
         if s.a == NONE || !listed.insert((s.a.min(s.b), s.a.max(s.b))) {
             continue;
         }
-        let (a, b) = (vmap[s.a as usize], vmap[s.b as usize]);
+        let (a, b) = (vmap(&smap, s.a), vmap(&smap, s.b));
         if a == NONE || b == NONE {
             continue;
         }
@@ -746,7 +746,7 @@ fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriMesh,
             )));
         };
         let tw = cdt.twin(h);
-        if in_domain(h / 3) || (tw != NONE && in_domain(tw / 3)) {
+        if in_domain(cdt, h / 3) || (tw != NONE && in_domain(cdt, tw / 3)) {
             segments.push([a, b]);
             segment_markers.push(s.marker);
         }
@@ -759,6 +759,42 @@ fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriMesh,
             }
         }
     }
+    let mut attrs = Vec::new();
+    if opts.region_attributes {
+        attrs.reserve(ntri as usize);
+        for (&k, &reg) in tmap.iter().zip(&cdt.treg) {
+            if k != NONE {
+                attrs.push(if reg == NO_REGION {
+                    0.0
+                } else {
+                    pslg.regions[reg as usize].attribute
+                });
+            }
+        }
+    }
+    let mut triangles = std::mem::take(&mut cdt.tv);
+    let mut neighbors = std::mem::take(&mut cdt.tn);
+    for t in 0..nslots {
+        let k = tmap[t];
+        if k == NONE {
+            continue;
+        }
+        let v = triangles[t];
+        triangles[k as usize] = v.map(|x| vmap(&smap, x));
+        let nb = neighbors[t];
+        neighbors[k as usize] = nb.map(|h| {
+            if h == NONE {
+                NONE
+            } else {
+                tmap[(h / 3) as usize]
+            }
+        });
+    }
+    triangles.truncate(ntri as usize);
+    neighbors.truncate(ntri as usize);
+    let mut vertices = std::mem::take(&mut cdt.pts);
+    vertices.truncate(n);
+    vertices.extend_from_slice(&steiner);
     Ok(TriMesh {
         steiner_points: next_v as usize - n,
         vertices,
@@ -769,7 +805,7 @@ fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriMesh,
         triangle_attributes: attrs,
         segments,
         segment_markers,
-        complete: r.complete,
+        complete,
     })
 }
 

@@ -106,6 +106,8 @@ pub struct Cdt {
     pub seg_queued: Vec<bool>,
     /// Triangles created by the last successful insertion.
     pub new_tris: Vec<TriId>,
+    /// Per-slot marks of cavity searches; sized lazily by [`Cdt::ready_stamps`] (a bulk
+    /// triangulation never needs them).
     pub(super) stamp: Vec<u32>,
     pub(super) epoch: u32,
     cavity: Vec<TriId>,
@@ -117,6 +119,7 @@ pub struct Cdt {
     bedge: Vec<(VertexId, VertexId, SegId)>,
     /// Endpoints of each input segment (to recognise points on one input segment).
     pub inseg_ends: Vec<[VertexId; 2]>,
+    /// Per-vertex scratch of `fill`, sized lazily there.
     vmark: Vec<TriId>,
     /// Whether the exterior and holes have been carved away.
     pub carved: bool,
@@ -170,7 +173,7 @@ impl Cdt {
             split_queue: Vec::new(),
             seg_queued: Vec::new(),
             new_tris: Vec::new(),
-            stamp: Vec::with_capacity(cap),
+            stamp: Vec::new(),
             epoch: 0,
             cavity: Vec::new(),
             boundary: Vec::new(),
@@ -179,7 +182,7 @@ impl Cdt {
             tflat: Vec::new(),
             bedge: Vec::new(),
             inseg_ends: Vec::new(),
-            vmark: vec![NONE; n + 1],
+            vmark: Vec::new(),
             carved: false,
             rec: Default::default(),
             hint: 0,
@@ -222,7 +225,6 @@ impl Cdt {
         self.ts.push([NONE; 3]);
         self.treg.push(NO_REGION);
         self.tflat.push(false);
-        self.stamp.push(0);
         t
     }
 
@@ -232,7 +234,6 @@ impl Cdt {
         self.pts.push(p);
         self.vtri.push(NONE);
         self.vseg.push(on_input_seg);
-        self.vmark.push(NONE);
         id
     }
 
@@ -551,7 +552,40 @@ impl Cdt {
         self.ts.resize(n, [NONE; 3]);
         self.treg.resize(n, NO_REGION);
         self.tflat.resize(n, false);
-        self.stamp.resize(n, 0);
+    }
+
+    /// Gives every slot a stamp (new slots get 0, which no epoch equals) and starts a new
+    /// epoch pair; returns the first epoch of the pair.
+    pub(super) fn ready_stamps(&mut self) -> u32 {
+        if self.stamp.len() < self.tv.len() {
+            self.stamp.resize(self.tv.len(), 0);
+        }
+        self.epoch = self.epoch.wrapping_add(2);
+        if self.epoch < 2 {
+            // Wrapped around: clear the stamps so old values cannot alias the new epoch.
+            self.stamp.iter_mut().for_each(|s| *s = 0);
+            self.epoch = 2;
+        }
+        self.epoch
+    }
+
+    /// Renames every vertex `r < ghost` of the triangles (and their `vtri` entries) to
+    /// `names[r]`: the way back from the ranked names of the bulk insertion.
+    pub fn rename_vertices(&mut self, names: &[u32]) {
+        let g = self.ghost;
+        for tri in &mut self.tv {
+            for v in tri.iter_mut() {
+                if *v < g {
+                    *v = names[*v as usize];
+                }
+            }
+        }
+        let mut vtri = vec![NONE; self.vtri.len()];
+        for (r, &t) in self.vtri.iter().enumerate().take(g as usize) {
+            vtri[names[r] as usize] = t;
+        }
+        vtri[g as usize..].copy_from_slice(&self.vtri[g as usize..]);
+        self.vtri = vtri;
     }
 
     /// [`Cdt::conflict`] for triangle corners `v` while no triangle is flat (before any
@@ -738,14 +772,8 @@ impl Cdt {
         on_input_seg: u32,
         existing: Option<VertexId>,
     ) -> Inserted {
-        self.epoch = self.epoch.wrapping_add(2);
-        if self.epoch < 2 {
-            // Wrapped around: clear the stamps so old values cannot alias the new epoch.
-            self.stamp.iter_mut().for_each(|s| *s = 0);
-            self.epoch = 2;
-        }
-        let inside = self.epoch;
-        let outside = self.epoch + 1;
+        let inside = self.ready_stamps();
+        let outside = inside + 1;
         self.cavity.clear();
         self.boundary.clear();
         let mut split_half = NONE;
@@ -916,6 +944,9 @@ impl Cdt {
     fn fill(&mut self, pv: VertexId) -> Inserted {
         self.new_tris.clear();
         self.breg.clear();
+        if self.vmark.len() < self.pts.len() {
+            self.vmark.resize(self.pts.len(), NONE);
+        }
         let ncav = self.cavity.len();
         let nb = self.boundary.len();
         // Save what lives in cavity slots before they are reused: the outer twin of each

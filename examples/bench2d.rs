@@ -133,8 +133,10 @@ fn run(case: Case, validate: bool, write_stem: Option<&str>) -> Result<String, S
     // alone, not during input generation or parsing.
     let hwm_reset = std::fs::write("/proc/self/clear_refs", "5").is_ok();
     let start = Instant::now();
+    let cpu_start = cpu_time();
     let result = triangulate(&case.pslg, &case.opts);
     let time = start.elapsed().as_secs_f64();
+    let cpu = cpu_time() - cpu_start;
     let after = proc_status();
     let mesh = result.map_err(|e| format!("triangulate failed on {}: {e}", case.name))?;
     let (min_angle, max_angle) = mesh.angle_range();
@@ -150,7 +152,7 @@ fn run(case: Case, validate: bool, write_stem: Option<&str>) -> Result<String, S
     let mut s = String::new();
     let _ = write!(
         s,
-        "{{\"tool\":\"idmesh\",\"case\":{},\"time_s\":{time:.6},\"vertices\":{},\
+        "{{\"tool\":\"idmesh\",\"case\":{},\"time_s\":{time:.6},\"cpu_s\":{cpu:.6},\"vertices\":{},\
          \"triangles\":{},\"segments\":{},\"min_angle\":{},\"max_angle\":{},\
          \"complete\":{},\"steiner_points\":{},\"input_hash\":\"{hash:016x}\",\
          \"input_points\":{},\"rss_before_kb\":{},\"hwm_before_kb\":{},\"hwm_after_kb\":{},\
@@ -178,6 +180,17 @@ fn run(case: Case, validate: bool, write_stem: Option<&str>) -> Result<String, S
     }
     s.push('}');
     Ok(s)
+}
+
+/// This thread's CPU time in seconds (less sensitive to other jobs than the wall clock).
+fn cpu_time() -> f64 {
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `ts` is a valid, writable timespec.
+    unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
+    ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
 }
 
 /// Writes Triangle's .node/.ele (0-based). Rust's `{}` for f64 prints the shortest string that

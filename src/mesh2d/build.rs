@@ -66,7 +66,7 @@ pub(super) fn run_with(
             break;
         }
     }
-    let mesh = output(&r, n, pslg, opts)?;
+    let mesh = output(&mut r, n, pslg, opts)?;
     // Never hand back a broken mesh as a success: the structural invariants are cheap to
     // check; the exact empty-circle check runs too in debug builds and in `validate()`. With
     // fixed segments the mesh is only constrained Delaunay; its local test is cheap, so it
@@ -188,6 +188,7 @@ fn check_input(p: &Pslg) -> Result<(), Error> {
 
 /// A spatially coherent insertion order: BRIO rounds (random, geometrically growing) each
 /// sorted along a Hilbert curve, so walks stay short and the expected cost is O(n log n).
+/// Ties in the Hilbert key go to the lower point index.
 pub(super) fn brio_order(points: &[[f64; 2]]) -> Vec<u32> {
     let n = points.len();
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
@@ -200,7 +201,11 @@ pub(super) fn brio_order(points: &[[f64; 2]]) -> Vec<u32> {
     let span = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(f64::MIN_POSITIVE);
     let scale = 65535.0 / span;
     let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
-    let mut keys: Vec<(u64, u32)> = Vec::with_capacity(n);
+    // Entries `hilbert << 32 | index`, first in input order with their round's rank, then
+    // grouped by rank (a stable counting sort), then each group sorted by key.
+    let mut entries: Vec<u64> = Vec::with_capacity(n);
+    let mut rank: Vec<u8> = Vec::with_capacity(n);
+    let mut count = [0usize; 22];
     for (i, p) in points.iter().enumerate() {
         // xorshift64*: a fixed seed keeps runs reproducible.
         state ^= state >> 12;
@@ -208,34 +213,118 @@ pub(super) fn brio_order(points: &[[f64; 2]]) -> Vec<u32> {
         state ^= state >> 27;
         let r = state.wrapping_mul(0x2545_F491_4F6C_DD1D);
         // Round = number of trailing ones: round k holds ~n/2^(k+1) points; later rounds are
-        // larger, so the first rounds form a random sample that makes walks short.
-        let round = (r.trailing_ones()).min(20) as u64;
+        // larger, so the first rounds form a random sample that makes walks short. Rounds go
+        // in the order 20, 19, ..., 0.
+        let round = r.trailing_ones().min(20) as usize;
         let x = ((p[0] - lo[0]) * scale) as u32;
         let y = ((p[1] - lo[1]) * scale) as u32;
         let h = hilbert_d(x.min(65535), y.min(65535)) as u64;
-        keys.push((((20 - round) << 32) | h, i as u32));
+        entries.push((h << 32) | i as u64);
+        rank.push((20 - round) as u8);
+        count[20 - round + 1] += 1;
     }
-    keys.sort_unstable();
-    keys.into_iter().map(|k| k.1).collect()
+    for k in 0..21 {
+        count[k + 1] += count[k];
+    }
+    let mut grouped = vec![0u64; n];
+    let mut fill = count;
+    for (&e, &r) in entries.iter().zip(&rank) {
+        grouped[fill[r as usize]] = e;
+        fill[r as usize] += 1;
+    }
+    drop(rank);
+    for k in 0..21 {
+        let (a, b) = (count[k], count[k + 1]);
+        sort_by_high_half(&mut grouped[a..b], &mut entries[a..b]);
+    }
+    grouped.into_iter().map(|e| e as u32).collect()
 }
 
-/// Position of `(x, y)` along a Hilbert curve of order 16.
-fn hilbert_d(mut x: u32, mut y: u32) -> u32 {
-    let n: u32 = 1 << 16;
-    let mut d: u32 = 0;
-    let mut s = n / 2;
-    while s > 0 {
-        let rx = u32::from((x & s) > 0);
-        let ry = u32::from((y & s) > 0);
-        d = d.wrapping_add(s.wrapping_mul(s).wrapping_mul((3 * rx) ^ ry));
-        if ry == 0 {
-            if rx == 1 {
-                x = s.wrapping_sub(1).wrapping_sub(x) & (n - 1);
-                y = s.wrapping_sub(1).wrapping_sub(y) & (n - 1);
-            }
-            std::mem::swap(&mut x, &mut y);
+/// Sorts `v` by the upper 32 bits of each entry, stably (so entries that tie keep their
+/// order): an LSD radix sort in bytes, with `tmp` (as long as `v`) as the second buffer.
+fn sort_by_high_half(v: &mut [u64], tmp: &mut [u64]) {
+    if v.len() < 256 {
+        v.sort_by_key(|e| e >> 32);
+        return;
+    }
+    let mut hist = [[0usize; 256]; 4];
+    for &e in v.iter() {
+        for (b, h) in hist.iter_mut().enumerate() {
+            h[((e >> (32 + 8 * b)) & 0xff) as usize] += 1;
         }
-        s /= 2;
+    }
+    let mut in_v = true;
+    for (b, h) in hist.iter_mut().enumerate() {
+        // A byte shared by every entry does not reorder anything.
+        if h.contains(&v.len()) {
+            continue;
+        }
+        let mut sum = 0;
+        for c in h.iter_mut() {
+            let x = *c;
+            *c = sum;
+            sum += x;
+        }
+        let (src, dst): (&[u64], &mut [u64]) = if in_v { (v, tmp) } else { (tmp, v) };
+        let shift = 32 + 8 * b;
+        for &e in src {
+            let d = ((e >> shift) & 0xff) as usize;
+            dst[h[d]] = e;
+            h[d] += 1;
+        }
+        in_v = !in_v;
+    }
+    if !in_v {
+        v.copy_from_slice(tmp);
+    }
+}
+
+/// Hilbert-curve steps four bits at a time: `HILBERT[state][x4 << 4 | y4]` holds the
+/// eight-bit curve position of that 16×16 block in its low byte and the next state in the
+/// next bits. A state is the symmetry applied to the remaining low bits so far: bit 0 a
+/// swap of x and y, bit 1 a complement of both (the two commute).
+static HILBERT: [[u16; 256]; 4] = hilbert_table();
+
+const fn hilbert_table() -> [[u16; 256]; 4] {
+    let mut t = [[0u16; 256]; 4];
+    let mut st = 0;
+    while st < 4 {
+        let mut xy = 0;
+        while xy < 256 {
+            let (xb, yb) = ((xy >> 4) as u32, (xy & 15) as u32);
+            let (mut sw, mut cp) = (st as u32 & 1, (st as u32 >> 1) & 1);
+            let mut d = 0u32;
+            let mut k = 4;
+            while k > 0 {
+                k -= 1;
+                let (bx, by) = ((xb >> k) & 1, (yb >> k) & 1);
+                let (mut rx, mut ry) = if sw == 1 { (by, bx) } else { (bx, by) };
+                rx ^= cp;
+                ry ^= cp;
+                d = (d << 2) | ((3 * rx) ^ ry);
+                if ry == 0 {
+                    // The quadrant is reflected: a swap, or a swap and a complement.
+                    sw ^= 1;
+                    cp ^= rx;
+                }
+            }
+            t[st][xy] = (d | ((sw | (cp << 1)) << 8)) as u16;
+            xy += 1;
+        }
+        st += 1;
+    }
+    t
+}
+
+/// Position of `(x, y)` (both below 2¹⁶) along a Hilbert curve of order 16.
+fn hilbert_d(x: u32, y: u32) -> u32 {
+    let mut st = 0usize;
+    let mut d = 0u32;
+    for sh in [12, 8, 4, 0] {
+        let xy = ((((x >> sh) & 15) << 4) | ((y >> sh) & 15)) as usize;
+        let e = HILBERT[st][xy];
+        d = (d << 8) | (e & 0xff) as u32;
+        st = (e >> 8) as usize;
     }
     d
 }
@@ -267,33 +356,48 @@ fn insert_points(cdt: &mut Cdt, points: &[[f64; 2]]) -> Result<(), Error> {
     }
     let c_pos = c_pos.ok_or(InputError::AllCollinear)?;
     let c = order[c_pos];
+    // Triangulate the points renamed by their rank in `order`, stored in that order, so that
+    // consecutive insertions touch neighbouring memory; the names go back afterwards.
+    let n = points.len();
+    let mut ranked: Vec<[f64; 2]> = Vec::with_capacity(n + 1);
+    ranked.extend(order.iter().map(|&i| points[i as usize]));
+    ranked.push(cdt.pts[n]);
+    let input_pts = std::mem::replace(&mut cdt.pts, ranked);
+    let (b_r, c_r) = (b_pos as u32, c_pos as u32);
     if orient2d(pa, pb, points[c as usize]) > 0.0 {
-        cdt.init_triangle(a, b, c);
+        cdt.init_triangle(0, b_r, c_r);
     } else {
-        cdt.init_triangle(a, c, b);
+        cdt.init_triangle(0, c_r, b_r);
     }
-    for (k, &i) in order.iter().enumerate() {
+    let mut result = Ok(());
+    for k in 0..n {
         if k == 0 || k == b_pos || k == c_pos {
             continue;
         }
-        let p = points[i as usize];
-        match cdt.insert(p, Start::Walk(cdt.hint), Mode::Force, NONE, Some(i)) {
+        let i = order[k];
+        match cdt.insert_bulk(k as u32) {
             Inserted::Yes(_) => {}
             Inserted::Duplicate(u) => {
-                return Err(InputError::DuplicatePoint {
+                let u = order[u as usize];
+                result = Err(InputError::DuplicatePoint {
                     first: u.min(i) as usize,
                     second: u.max(i) as usize,
                 }
-                .into())
+                .into());
+                break;
             }
             other => {
-                return Err(Error::Internal(format!(
+                result = Err(Error::Internal(format!(
                     "inserting input point {i}: {other:?}"
-                )))
+                )));
+                break;
             }
         }
     }
-    Ok(())
+    cdt.pts = input_pts;
+    cdt.rename_vertices(&order);
+    cdt.sync_aux();
+    result
 }
 
 /// One piece of an input segment after splitting it at input points lying on it.
@@ -658,38 +762,49 @@ fn flood(cdt: &mut Cdt, stack: &mut Vec<u32>, label: u32) {
 }
 
 /// Builds the output: domain triangles, input vertices at their input index, used Steiner
-/// vertices after them, subsegments on domain edges.
-fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
-    let cdt = &r.cdt;
-    let in_domain = |t: u32| {
+/// vertices after them, subsegments on domain edges. The triangle and neighbour tables are
+/// built in place in the store's `tv` and `tn` (compacting forwards: a triangle's output
+/// index never exceeds its slot), and the vertex table reuses `pts`, so the store is spent
+/// afterwards.
+fn output(r: &mut Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
+    let complete = r.complete;
+    let cdt = &mut r.cdt;
+    let in_domain = |cdt: &Cdt, t: u32| {
         let reg = cdt.treg[t as usize];
         cdt.alive(t) && reg != EXTERIOR && reg != HOLE && !cdt.is_ghost(t)
     };
     let nv = cdt.pts.len();
-    let mut vmap = vec![NONE; nv];
-    for (i, m) in vmap.iter_mut().enumerate().take(n) {
-        *m = i as u32;
-    }
-    let mut tmap = vec![NONE; cdt.num_slots()];
+    let nslots = cdt.num_slots();
+    // Input vertices keep their index; `smap` numbers the used Steiner vertices (cdt index
+    // `n + 1 + k`, after the ghost) in order of first use.
+    let mut smap = vec![NONE; nv - n - 1];
+    let vmap = |smap: &[u32], v: u32| {
+        match (v as usize).cmp(&n) {
+            std::cmp::Ordering::Less => v,
+            std::cmp::Ordering::Equal => NONE, // the ghost
+            std::cmp::Ordering::Greater => smap[v as usize - n - 1],
+        }
+    };
+    let mut tmap = vec![NONE; nslots];
     let mut ntri = 0u32;
     let mut next_v = n as u32;
-    let mut vertices: Vec<[f64; 2]> = pslg.points.clone();
+    let mut steiner: Vec<[f64; 2]> = Vec::new();
     let mut vertex_markers: Vec<i32> = if pslg.point_markers.is_empty() {
         vec![0; n]
     } else {
         pslg.point_markers.clone()
     };
-    for t in 0..cdt.num_slots() as u32 {
-        if !in_domain(t) {
+    for t in 0..nslots as u32 {
+        if !in_domain(cdt, t) {
             continue;
         }
         tmap[t as usize] = ntri;
         ntri += 1;
         for &v in &cdt.tv[t as usize] {
-            if vmap[v as usize] == NONE {
-                vmap[v as usize] = next_v;
+            if (v as usize) > n && smap[v as usize - n - 1] == NONE {
+                smap[v as usize - n - 1] = next_v;
                 next_v += 1;
-                vertices.push(cdt.pts[v as usize]);
+                steiner.push(cdt.pts[v as usize]);
                 let s = cdt.vseg[v as usize];
                 let marker = if s != NONE {
                     segment_marker(pslg, s as usize)
@@ -698,32 +813,6 @@ fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriMesh,
                 };
                 vertex_markers.push(marker);
             }
-        }
-    }
-    let mut triangles = Vec::with_capacity(ntri as usize);
-    let mut neighbors = Vec::with_capacity(ntri as usize);
-    let mut attrs = Vec::new();
-    for t in 0..cdt.num_slots() as u32 {
-        if tmap[t as usize] == NONE {
-            continue;
-        }
-        let v = cdt.tv[t as usize];
-        triangles.push(v.map(|x| vmap[x as usize]));
-        let nb = cdt.tn[t as usize].map(|h| {
-            if h == NONE {
-                NONE
-            } else {
-                tmap[(h / 3) as usize]
-            }
-        });
-        neighbors.push(nb);
-        if opts.region_attributes {
-            let reg = cdt.treg[t as usize];
-            attrs.push(if reg == NO_REGION {
-                0.0
-            } else {
-                pslg.regions[reg as usize].attribute
-            });
         }
     }
     let mut segments = Vec::new();
@@ -735,7 +824,7 @@ fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriMesh,
         if s.a == NONE || !listed.insert((s.a.min(s.b), s.a.max(s.b))) {
             continue;
         }
-        let (a, b) = (vmap[s.a as usize], vmap[s.b as usize]);
+        let (a, b) = (vmap(&smap, s.a), vmap(&smap, s.b));
         if a == NONE || b == NONE {
             continue;
         }
@@ -746,7 +835,7 @@ fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriMesh,
             )));
         };
         let tw = cdt.twin(h);
-        if in_domain(h / 3) || (tw != NONE && in_domain(tw / 3)) {
+        if in_domain(cdt, h / 3) || (tw != NONE && in_domain(cdt, tw / 3)) {
             segments.push([a, b]);
             segment_markers.push(s.marker);
         }
@@ -759,6 +848,42 @@ fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriMesh,
             }
         }
     }
+    let mut attrs = Vec::new();
+    if opts.region_attributes {
+        attrs.reserve(ntri as usize);
+        for (&k, &reg) in tmap.iter().zip(&cdt.treg) {
+            if k != NONE {
+                attrs.push(if reg == NO_REGION {
+                    0.0
+                } else {
+                    pslg.regions[reg as usize].attribute
+                });
+            }
+        }
+    }
+    let mut triangles = std::mem::take(&mut cdt.tv);
+    let mut neighbors = std::mem::take(&mut cdt.tn);
+    for t in 0..nslots {
+        let k = tmap[t];
+        if k == NONE {
+            continue;
+        }
+        let v = triangles[t];
+        triangles[k as usize] = v.map(|x| vmap(&smap, x));
+        let nb = neighbors[t];
+        neighbors[k as usize] = nb.map(|h| {
+            if h == NONE {
+                NONE
+            } else {
+                tmap[(h / 3) as usize]
+            }
+        });
+    }
+    triangles.truncate(ntri as usize);
+    neighbors.truncate(ntri as usize);
+    let mut vertices = std::mem::take(&mut cdt.pts);
+    vertices.truncate(n);
+    vertices.extend_from_slice(&steiner);
     Ok(TriMesh {
         steiner_points: next_v as usize - n,
         vertices,
@@ -769,7 +894,7 @@ fn output(r: &Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriMesh,
         triangle_attributes: attrs,
         segments,
         segment_markers,
-        complete: r.complete,
+        complete,
     })
 }
 
@@ -779,5 +904,85 @@ pub(super) fn segment_marker(pslg: &Pslg, s: usize) -> i32 {
         1
     } else {
         pslg.segment_markers[s]
+    }
+}
+
+#[cfg(test)]
+mod order_tests {
+    use super::*;
+
+    /// The bit-serial Hilbert position (the definition the table is built from).
+    fn hilbert_ref(mut x: u32, mut y: u32) -> u32 {
+        let n: u32 = 1 << 16;
+        let mut d: u32 = 0;
+        let mut s = n / 2;
+        while s > 0 {
+            let rx = u32::from((x & s) > 0);
+            let ry = u32::from((y & s) > 0);
+            d = d.wrapping_add(s.wrapping_mul(s).wrapping_mul((3 * rx) ^ ry));
+            if ry == 0 {
+                if rx == 1 {
+                    x = s.wrapping_sub(1).wrapping_sub(x) & (n - 1);
+                    y = s.wrapping_sub(1).wrapping_sub(y) & (n - 1);
+                }
+                std::mem::swap(&mut x, &mut y);
+            }
+            s /= 2;
+        }
+        d
+    }
+
+    #[test]
+    fn hilbert_table_matches_bit_serial_definition() {
+        let mut z: u64 = 12345;
+        for i in 0..200_000u32 {
+            z = z
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let (x, y) = if i < 65536 {
+                (i, 65535 - i)
+            } else {
+                ((z >> 16) as u32 & 0xffff, (z >> 40) as u32 & 0xffff)
+            };
+            assert_eq!(hilbert_d(x, y), hilbert_ref(x, y), "({x}, {y})");
+        }
+    }
+
+    #[test]
+    fn brio_order_matches_a_comparison_sort() {
+        let mut z: u64 = 99;
+        let mut pts = Vec::new();
+        for _ in 0..50_000 {
+            z = z
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            // Coarse coordinates, so equal Hilbert keys occur.
+            pts.push([((z >> 33) % 300) as f64, ((z >> 13) % 300) as f64]);
+        }
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in &pts {
+            for k in 0..2 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let span = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(f64::MIN_POSITIVE);
+        let scale = 65535.0 / span;
+        let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+        let mut keys: Vec<(u64, u32)> = Vec::new();
+        for (i, p) in pts.iter().enumerate() {
+            state ^= state >> 12;
+            state ^= state << 25;
+            state ^= state >> 27;
+            let r = state.wrapping_mul(0x2545_F491_4F6C_DD1D);
+            let round = (r.trailing_ones()).min(20) as u64;
+            let x = ((p[0] - lo[0]) * scale) as u32;
+            let y = ((p[1] - lo[1]) * scale) as u32;
+            let h = hilbert_ref(x.min(65535), y.min(65535)) as u64;
+            keys.push((((20 - round) << 32) | h, i as u32));
+        }
+        keys.sort_unstable();
+        let want: Vec<u32> = keys.into_iter().map(|k| k.1).collect();
+        assert_eq!(brio_order(&pts), want);
     }
 }

@@ -274,12 +274,7 @@ impl Cdt {
         if rec.crossed.iter().any(|&t| self.treg[t as usize] != label) {
             return Recovery::Failed;
         }
-        self.epoch = self.epoch.wrapping_add(2);
-        if self.epoch < 2 {
-            self.stamp.iter_mut().for_each(|x| *x = 0);
-            self.epoch = 2;
-        }
-        let mark = self.epoch;
+        let mark = self.ready_stamps();
         for &t in &rec.crossed {
             self.stamp[t as usize] = mark;
         }

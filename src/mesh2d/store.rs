@@ -11,7 +11,7 @@
 //! steps 5–6): a `Provisional` insertion aborts and hands the segment back; a `Force` insertion
 //! queues the segment for splitting and continues.
 
-use crate::predicates::{encroaches, incircle, orient2d, strictly_between};
+use crate::predicates::{encroaches, incircle, incircle_fast, orient2d, strictly_between};
 
 use super::NONE;
 
@@ -106,6 +106,8 @@ pub struct Cdt {
     pub seg_queued: Vec<bool>,
     /// Triangles created by the last successful insertion.
     pub new_tris: Vec<TriId>,
+    /// Per-slot marks of cavity searches; sized lazily by [`Cdt::ready_stamps`] (a bulk
+    /// triangulation never needs them).
     pub(super) stamp: Vec<u32>,
     pub(super) epoch: u32,
     cavity: Vec<TriId>,
@@ -117,6 +119,7 @@ pub struct Cdt {
     bedge: Vec<(VertexId, VertexId, SegId)>,
     /// Endpoints of each input segment (to recognise points on one input segment).
     pub inseg_ends: Vec<[VertexId; 2]>,
+    /// Per-vertex scratch of `fill`, sized lazily there.
     vmark: Vec<TriId>,
     /// Whether the exterior and holes have been carved away.
     pub carved: bool,
@@ -124,6 +127,10 @@ pub struct Cdt {
     pub(super) rec: super::recover::Scratch,
     /// The last triangle created (a walking hint).
     pub hint: TriId,
+    /// Scratch of [`Cdt::insert_bulk`]: half-edges still to cross, and the cavity boundary
+    /// as `[outer twin, q, r]` in counter-clockwise order.
+    bulk_stack: Vec<u32>,
+    bulk_bnd: Vec<[u32; 3]>,
 }
 
 #[inline]
@@ -166,7 +173,7 @@ impl Cdt {
             split_queue: Vec::new(),
             seg_queued: Vec::new(),
             new_tris: Vec::new(),
-            stamp: Vec::with_capacity(cap),
+            stamp: Vec::new(),
             epoch: 0,
             cavity: Vec::new(),
             boundary: Vec::new(),
@@ -175,10 +182,12 @@ impl Cdt {
             tflat: Vec::new(),
             bedge: Vec::new(),
             inseg_ends: Vec::new(),
-            vmark: vec![NONE; n + 1],
+            vmark: Vec::new(),
             carved: false,
             rec: Default::default(),
             hint: 0,
+            bulk_stack: Vec::new(),
+            bulk_bnd: Vec::new(),
         }
     }
 
@@ -216,7 +225,6 @@ impl Cdt {
         self.ts.push([NONE; 3]);
         self.treg.push(NO_REGION);
         self.tflat.push(false);
-        self.stamp.push(0);
         t
     }
 
@@ -226,7 +234,6 @@ impl Cdt {
         self.pts.push(p);
         self.vtri.push(NONE);
         self.vseg.push(on_input_seg);
-        self.vmark.push(NONE);
         id
     }
 
@@ -525,6 +532,225 @@ impl Cdt {
         ghost_hit
     }
 
+    /// A slot for [`Cdt::insert_bulk`]: only `tv` and `tn` grow; the other per-triangle
+    /// arrays catch up in [`Cdt::sync_aux`].
+    #[inline]
+    fn alloc_bulk(&mut self) -> TriId {
+        if let Some(t) = self.free.pop() {
+            return t;
+        }
+        let t = self.tv.len() as TriId;
+        self.tv.push([NONE; 3]);
+        self.tn.push([NONE; 3]);
+        t
+    }
+
+    /// Brings the per-triangle arrays other than `tv` and `tn` to the slot count, with the
+    /// values a fresh slot gets (after [`Cdt::insert_bulk`]).
+    pub fn sync_aux(&mut self) {
+        let n = self.tv.len();
+        self.ts.resize(n, [NONE; 3]);
+        self.treg.resize(n, NO_REGION);
+        self.tflat.resize(n, false);
+    }
+
+    /// Gives every slot a stamp (new slots get 0, which no epoch equals) and starts a new
+    /// epoch pair; returns the first epoch of the pair.
+    pub(super) fn ready_stamps(&mut self) -> u32 {
+        if self.stamp.len() < self.tv.len() {
+            self.stamp.resize(self.tv.len(), 0);
+        }
+        self.epoch = self.epoch.wrapping_add(2);
+        if self.epoch < 2 {
+            // Wrapped around: clear the stamps so old values cannot alias the new epoch.
+            self.stamp.iter_mut().for_each(|s| *s = 0);
+            self.epoch = 2;
+        }
+        self.epoch
+    }
+
+    /// Renames every vertex `r < ghost` of the triangles (and their `vtri` entries) to
+    /// `names[r]`: the way back from the ranked names of the bulk insertion.
+    pub fn rename_vertices(&mut self, names: &[u32]) {
+        let g = self.ghost;
+        for tri in &mut self.tv {
+            for v in tri.iter_mut() {
+                if *v < g {
+                    *v = names[*v as usize];
+                }
+            }
+        }
+        let mut vtri = vec![NONE; self.vtri.len()];
+        for (r, &t) in self.vtri.iter().enumerate().take(g as usize) {
+            vtri[names[r] as usize] = t;
+        }
+        vtri[g as usize..].copy_from_slice(&self.vtri[g as usize..]);
+        self.vtri = vtri;
+    }
+
+    /// [`Cdt::conflict`] for triangle corners `v` while no triangle is flat (before any
+    /// segment exists).
+    #[inline(always)]
+    fn conflict_plain(&self, v: [VertexId; 3], p: [f64; 2]) -> bool {
+        let g = self.ghost;
+        if v[0] == g || v[1] == g || v[2] == g {
+            let (a, b) = if v[0] == g {
+                (v[1], v[2])
+            } else if v[1] == g {
+                (v[2], v[0])
+            } else {
+                (v[0], v[1])
+            };
+            let (a, b) = (self.p(a), self.p(b));
+            let o = orient2d(a, b, p);
+            o > 0.0 || (o == 0.0 && strictly_between(a, b, p))
+        } else {
+            incircle_fast(self.p(v[0]), self.p(v[1]), self.p(v[2]), p) > 0.0
+        }
+    }
+
+    /// Visibility walk without walls from `start` to the triangle containing `p` (or a ghost
+    /// when `p` is outside the hull). The edge the walk came in through is not tested again:
+    /// `p` lies strictly beyond it (the same exact orientation, seen from the other side).
+    /// `None` when the budget runs out.
+    fn walk_plain(&self, start: TriId, p: [f64; 2]) -> Option<TriId> {
+        let g = self.ghost;
+        let mut t = start;
+        let v = self.tv[t as usize];
+        if v[0] == g || v[1] == g || v[2] == g {
+            let k = (0..3).find(|&k| v[k] == g).unwrap_or(0);
+            t = self.tn[t as usize][k] / 3;
+        }
+        // `from`: the edge of `t` the walk entered through (3: none).
+        let mut from = 3usize;
+        let budget = 4 * self.tv.len() + 64;
+        for _ in 0..budget {
+            let v = self.tv[t as usize];
+            if v[0] == g || v[1] == g || v[2] == g {
+                return Some(t);
+            }
+            let pv = [self.p(v[0]), self.p(v[1]), self.p(v[2])];
+            let start_edge = if from == 3 { 0 } else { next(from) };
+            let mut moved = false;
+            let mut i = start_edge;
+            for _ in 0..3 {
+                if i != from && orient2d(pv[next(i)], pv[prev(i)], p) < 0.0 {
+                    let tw = self.tn[t as usize][i];
+                    t = tw / 3;
+                    from = (tw % 3) as usize;
+                    moved = true;
+                    break;
+                }
+                i = next(i);
+            }
+            if !moved {
+                return Some(t);
+            }
+        }
+        None
+    }
+
+    /// Inserts input vertex `pv` (already in `pts`) while the mesh has no segment and nothing
+    /// is carved: the Bowyer–Watson step of [`Cdt::insert`] for `Mode::Force` without walls.
+    /// Without walls the cavity (the triangles whose circumcircle holds `p` strictly, or ghosts
+    /// `p` sees) is a topological disk whose dual graph is a tree and whose vertices all lie
+    /// on its boundary, and `p` sees every boundary edge strictly. So the depth-first search
+    /// needs no marks, and visiting each triangle's edges in counter-clockwise order yields
+    /// the boundary in counter-clockwise order, which links the new fan directly.
+    /// Only `tv` and `tn` are kept up to date; call [`Cdt::sync_aux`] afterwards.
+    pub fn insert_bulk(&mut self, pv: VertexId) -> Inserted {
+        debug_assert!(self.segs.is_empty() && !self.carved);
+        let p = self.pts[pv as usize];
+        let mut t = match self.walk_plain(self.hint, p) {
+            Some(t) => t,
+            None => {
+                self.sync_aux();
+                match self.scan_locate(p) {
+                    Some(t) => t,
+                    None => return Inserted::LostWalk,
+                }
+            }
+        };
+        let v = self.tv[t as usize];
+        for &u in &v {
+            if u != self.ghost && self.pts[u as usize] == p {
+                return Inserted::Duplicate(u);
+            }
+        }
+        if !self.conflict_plain(v, p) {
+            // See `insert`: a point on the line of a hull edge but outside it.
+            let mut found = NONE;
+            for i in 0..3 {
+                let n = self.tn[t as usize][i] / 3;
+                if self.conflict_plain(self.tv[n as usize], p) {
+                    found = n;
+                    break;
+                }
+            }
+            if found == NONE {
+                return Inserted::LostWalk;
+            }
+            t = found;
+        }
+        let mut cavity = std::mem::take(&mut self.cavity);
+        let mut stack = std::mem::take(&mut self.bulk_stack);
+        let mut bnd = std::mem::take(&mut self.bulk_bnd);
+        cavity.clear();
+        stack.clear();
+        bnd.clear();
+        cavity.push(t);
+        stack.extend_from_slice(&[3 * t + 2, 3 * t + 1, 3 * t]);
+        while let Some(h) = stack.pop() {
+            let tw = self.tn[(h / 3) as usize][(h % 3) as usize];
+            let n = tw / 3;
+            let j = (tw % 3) as usize;
+            let nv = self.tv[n as usize];
+            if self.conflict_plain(nv, p) {
+                cavity.push(n);
+                // Edge `j` of `n` runs r → q; its other edges, counter-clockwise from q.
+                stack.push(3 * n + prev(j) as u32);
+                stack.push(3 * n + next(j) as u32);
+            } else {
+                bnd.push([tw, nv[prev(j)], nv[next(j)]]);
+            }
+        }
+        let result = self.fill_bulk(pv, &mut cavity, &bnd);
+        self.cavity = cavity;
+        self.bulk_stack = stack;
+        self.bulk_bnd = bnd;
+        result
+    }
+
+    /// The fan from `pv` over the boundary `bnd` (counter-clockwise, see
+    /// [`Cdt::insert_bulk`]), reusing the cavity's slots.
+    fn fill_bulk(&mut self, pv: VertexId, cavity: &mut Vec<TriId>, bnd: &[[u32; 3]]) -> Inserted {
+        let nb = bnd.len();
+        // A disk of `k` triangles has `k + 2` boundary edges forming one closed chain; check
+        // it before changing anything (it always holds with exact predicates).
+        if nb != cavity.len() + 2 || (0..nb).any(|k| bnd[k][2] != bnd[(k + 1) % nb][1]) {
+            return Inserted::LostWalk;
+        }
+        let a = self.alloc_bulk();
+        cavity.push(a);
+        let b = self.alloc_bulk();
+        cavity.push(b);
+        let mut prev_t = cavity[nb - 1];
+        for k in 0..nb {
+            let t = cavity[k];
+            let next_t = if k + 1 < nb { cavity[k + 1] } else { cavity[0] };
+            let [outer, q, r] = bnd[k];
+            let tu = t as usize;
+            self.tv[tu] = [pv, q, r];
+            self.tn[tu] = [outer, 3 * next_t + 2, 3 * prev_t + 1];
+            self.tn[(outer / 3) as usize][(outer % 3) as usize] = 3 * t;
+            self.vtri[q as usize] = t;
+            prev_t = t;
+        }
+        self.vtri[pv as usize] = cavity[0];
+        self.hint = cavity[0];
+        Inserted::Yes(pv)
+    }
+
     /// Queues segment `s` for splitting (once); fixed segments are never split.
     pub fn queue_split(&mut self, s: SegId) {
         if !self.seg_queued[s as usize] && !self.segs[s as usize].fixed {
@@ -546,14 +772,8 @@ impl Cdt {
         on_input_seg: u32,
         existing: Option<VertexId>,
     ) -> Inserted {
-        self.epoch = self.epoch.wrapping_add(2);
-        if self.epoch < 2 {
-            // Wrapped around: clear the stamps so old values cannot alias the new epoch.
-            self.stamp.iter_mut().for_each(|s| *s = 0);
-            self.epoch = 2;
-        }
-        let inside = self.epoch;
-        let outside = self.epoch + 1;
+        let inside = self.ready_stamps();
+        let outside = inside + 1;
         self.cavity.clear();
         self.boundary.clear();
         let mut split_half = NONE;
@@ -724,6 +944,9 @@ impl Cdt {
     fn fill(&mut self, pv: VertexId) -> Inserted {
         self.new_tris.clear();
         self.breg.clear();
+        if self.vmark.len() < self.pts.len() {
+            self.vmark.resize(self.pts.len(), NONE);
+        }
         let ncav = self.cavity.len();
         let nb = self.boundary.len();
         // Save what lives in cavity slots before they are reused: the outer twin of each

@@ -227,6 +227,97 @@ impl FacetMesh {
         }
     }
 
+    /// The index of the live triangle with corners `v` (any order), if there is one.
+    fn find_triangle(&self, v: [u32; 3]) -> Option<u32> {
+        let h = self.find_half_edge(v[0], v[1])?;
+        let t = h / 3;
+        if self.tv[t as usize].contains(&v[2]) {
+            return Some(t);
+        }
+        let o = self.tn[t as usize][(h % 3) as usize];
+        (o != NONE && self.tv[(o / 3) as usize].contains(&v[2])).then_some(o / 3)
+    }
+
+    /// Checks a provisional Steiner point `p` meant to split the triangle `origin` (with `p`
+    /// in its circumcircle, typically its circumcentre) before it is inserted: `p` must be
+    /// reachable from `origin` through triangles inside the facet that are in conflict with
+    /// it, without crossing a subsegment. In exact arithmetic a point that is not lies beyond
+    /// a subsegment on that region's boundary (outside the facet, in a hole, or across an
+    /// inner subsegment); inserting it anyway would put a vertex outside the facet into the
+    /// facet mesh (and into the 3D mesh as a facet point). Such a point encroaches the
+    /// boundary subsegments of the region that face it: they are returned to be split first
+    /// (paper §4.1: the facet waits until the segment is split), as Ruppert does when a
+    /// circumcentre falls outside the domain. `Ok` when `p` is reached or `origin` is not a
+    /// triangle of this mesh (then [`FacetMesh::insert`] decides).
+    pub fn check_reach(
+        &mut self,
+        origin: [u32; 3],
+        p: [f64; 3],
+        pts: &[[f64; 3]],
+        is_subseg: &dyn Fn(u32, u32) -> bool,
+    ) -> Result<(), FacetInsertError> {
+        let Some(t0) = self.find_triangle(origin) else {
+            return Ok(());
+        };
+        let target = self.locate(p, pts);
+        if target == Some(t0) {
+            return Ok(());
+        }
+        self.cur = self.cur.wrapping_add(2);
+        if self.cur < 2 {
+            self.stamp.iter_mut().for_each(|s| *s = 0);
+            self.cur = 2;
+        }
+        let cur = self.cur;
+        let p2 = self.proj(p);
+        let mut region = vec![t0];
+        self.stamp[t0 as usize] = cur;
+        let (mut facing, mut other) = (Vec::new(), Vec::new());
+        let mut k = 0;
+        while k < region.len() {
+            let t = region[k];
+            k += 1;
+            let v = self.tv[t as usize];
+            for i in 0..3 {
+                let h = self.tn[t as usize][i];
+                let (x, y) = (v[next(i)], v[prev(i)]);
+                if h == NONE {
+                    continue;
+                }
+                if !is_bound(x) && !is_bound(y) && is_subseg(x, y) {
+                    let seg = [x.min(y), x.max(y)];
+                    if orient2d(self.pp(x, pts), self.pp(y, pts), p2) <= 0.0 {
+                        facing.push(seg);
+                    } else {
+                        other.push(seg);
+                    }
+                    continue;
+                }
+                let n = h / 3;
+                if self.stamp[n as usize] == cur
+                    || !self.inside[n as usize]
+                    || !self.conflict(n, p, pts)
+                {
+                    continue;
+                }
+                if Some(n) == target {
+                    return Ok(());
+                }
+                self.stamp[n as usize] = cur;
+                region.push(n);
+            }
+        }
+        if facing.is_empty() {
+            facing = other;
+        }
+        if facing.is_empty() {
+            return Ok(());
+        }
+        facing.sort_unstable();
+        facing.dedup();
+        Err(FacetInsertError::Encroaches(facing))
+    }
+
     /// Whether the mesh has a vertex of the facet yet.
     pub fn started(&self) -> bool {
         !self.vtri.is_empty()
@@ -736,6 +827,28 @@ mod tests {
             fm.check().unwrap();
         }
         fm
+    }
+
+    #[test]
+    fn circumcentre_beyond_a_subsegment_is_refused() {
+        // An obtuse facet triangle: its circumcentre (5, -12) lies outside the facet, beyond
+        // the subsegment 0-1, which it encroaches; a point inside is reached.
+        let mut pts = vec![[0.0, 0.0, 0.0], [10.0, 0.0, 0.0], [5.0, 1.0, 0.0]];
+        let mut fm = build(&pts, true);
+        let sub = |a: u32, b: u32| a != b && a < 3 && b < 3;
+        let cc = crate::geometry::tri_circumcenter3(pts[0], pts[1], pts[2]).unwrap();
+        assert_eq!(cc[1], -12.0);
+        assert_eq!(
+            fm.check_reach([0, 1, 2], cc, &pts, &sub),
+            Err(FacetInsertError::Encroaches(vec![[0, 1]]))
+        );
+        assert_eq!(
+            fm.check_reach([2, 0, 1], [5.0, 0.5, 0.0], &pts, &sub),
+            Ok(())
+        );
+        // Not a triangle of the mesh: left to `insert`.
+        pts.push([5.0, 0.2, 0.0]);
+        assert_eq!(fm.check_reach([0, 1, 3], cc, &pts, &sub), Ok(()));
     }
 
     #[test]

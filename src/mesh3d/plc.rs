@@ -590,11 +590,26 @@ impl Mesher<'_> {
         if force && self.below_floor(&[a, b, c]) {
             return Ok(()); // a refused circumcenter's demand; the face is present
         }
-        let Some(cc) = tri_circumcenter3(a, b, c) else {
+        let centroid = [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0);
+        let Some(mut cc) = tri_circumcenter3(a, b, c) else {
             return Err(Error::Internal(format!("degenerate subface {v:?}")));
         };
+        {
+            // A circumcentre beyond a subsegment (outside the facet) waits for that split.
+            let feat = &self.feat;
+            let is_sub = |a: u32, b: u32| feat.subseg(a, b).is_some();
+            if let Err(FacetInsertError::Encroaches(segs)) =
+                self.fmesh[fid as usize].check_reach(v, cc, &self.pts, &is_sub)
+            {
+                if self.defer_to_segments(&segs, v, fid, force) {
+                    return Ok(());
+                }
+                // Every such subsegment is below the size floor: split inside the face.
+                cc = centroid;
+            }
+        }
         let m = self.new_vertex(cc)?;
-        let mut tried_centroid = false;
+        let mut tried_centroid = cc == centroid;
         loop {
             match self.facet_insert(fid, m, true, None) {
                 Ok(()) => break,
@@ -602,25 +617,31 @@ impl Mesher<'_> {
                 // quite Delaunay around it): split at the centroid instead.
                 Err(FacetInsertError::Duplicate(_) | FacetInsertError::Lost) if !tried_centroid => {
                     tried_centroid = true;
-                    self.pts[m as usize] = [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0);
-                    continue;
+                    self.pts[m as usize] = centroid;
                 }
-                r => match r {
-                    Err(FacetInsertError::Encroaches(segs)) => {
+                Err(FacetInsertError::Encroaches(segs)) => {
+                    if self.defer_to_segments(&segs, v, fid, force) {
                         self.pts.pop();
-                        for s in segs {
-                            self.seg_q.push_front((s, true));
-                        }
-                        self.face_q.push_back((v, fid, force));
                         return Ok(());
                     }
-                    Err(e) => {
+                    if tried_centroid {
+                        self.pts.pop();
+                        if force {
+                            return Ok(()); // a quality demand on a present face: dropped
+                        }
                         return Err(Error::Internal(format!(
-                            "circumcenter of subface {v:?} in facet {fid}: {e:?}"
-                        )))
+                            "subface {v:?} of facet {fid} cannot be split: the subsegments \
+                             it encroaches are below the size floor"
+                        )));
                     }
-                    Ok(()) => break,
-                },
+                    tried_centroid = true;
+                    self.pts[m as usize] = centroid;
+                }
+                Err(e) => {
+                    return Err(Error::Internal(format!(
+                        "circumcenter of subface {v:?} in facet {fid}: {e:?}"
+                    )))
+                }
             }
         }
         self.steiner += 1;
@@ -628,6 +649,23 @@ impl Mesher<'_> {
         self.feat.vert_facets.insert(m, vec![fid]);
         self.insert3d(m, false)
             .map_err(|_| Error::Internal(format!("facet point {m} refused")))
+    }
+
+    /// Queues the subsegments a refused facet point encroaches (to be split first) and the
+    /// subface again; `false` (nothing queued) when every one of them is below the size floor,
+    /// so that a face cannot wait forever for splits that will never happen.
+    fn defer_to_segments(&mut self, segs: &[[u32; 2]], v: [u32; 3], fid: u32, force: bool) -> bool {
+        let mut any = false;
+        for &[x, y] in segs {
+            if !self.below_floor(&[self.pts[x as usize], self.pts[y as usize]]) {
+                self.seg_q.push_front(([x, y], true));
+                any = true;
+            }
+        }
+        if any {
+            self.face_q.push_back((v, fid, force));
+        }
+        any
     }
 
     fn is_bad(&self, t: u32) -> bool {

@@ -197,3 +197,72 @@ fn slanted_flat_box_conforms() {
     let mesh = tetrahedralize(&plc, &opts).unwrap();
     check_mesh(&plc, &mesh);
 }
+
+/// The seven-sided spike of `spike-1-7.smesh` (a 1° tip): the apex angles are tiny, so the
+/// circumcentres of skinny subfaces near the tip fall outside their (needle) facets.
+/// Coordinates as in the file (they round to the same doubles).
+#[allow(clippy::excessive_precision)]
+fn spike_plc() -> Plc {
+    let mut plc = Plc {
+        points: vec![
+            [0.0, 0.017452406437283512, 0.0],
+            [0.013644840797495955, 0.010881397431539984, 0.0],
+            [0.017014838170449433, -0.0038835257802095195, 0.0],
+            [0.0075723153616079134, -0.015724074869972217, 0.0],
+            [-0.007572315361607909, -0.015724074869972217, 0.0],
+            [-0.017014838170449433, -0.0038835257802095238, 0.0],
+            [-0.013644840797495957, 0.01088139743153998, 0.0],
+            [0.0, 0.0, 1.0],
+        ],
+        ..Plc::default()
+    };
+    plc.facets.push(Facet {
+        polygons: vec![(0..7).collect()],
+        holes: vec![],
+        marker: 1,
+    });
+    for i in 0..7u32 {
+        plc.facets.push(Facet {
+            polygons: vec![vec![i, (i + 1) % 7, 7]],
+            holes: vec![],
+            marker: 2 + i as i32,
+        });
+    }
+    plc
+}
+
+#[test]
+fn spike_facet_points_stay_inside_their_facets() {
+    // Was: "facet point 857 refused". A subface circumcentre outside its facet (beyond a
+    // boundary subsegment) was inserted into the facet mesh's outside region and into the 3D
+    // mesh (points up to 1e11 away); a later circumcentre rounded onto one of them.
+    let plc = spike_plc();
+    let opts = Options3 {
+        radius_edge: Some(1.414),
+        max_volume: Some(0.00001),
+        ..Options3::default()
+    };
+    let mesh = tetrahedralize(&plc, &opts).unwrap();
+    check_mesh(&plc, &mesh);
+    // Every vertex lies in the input's bounding box (the spike is convex).
+    for p in &mesh.vertices {
+        assert!(
+            (0..3).all(|k| {
+                let lo = plc
+                    .points
+                    .iter()
+                    .map(|q| q[k])
+                    .fold(f64::INFINITY, f64::min);
+                let hi = plc
+                    .points
+                    .iter()
+                    .map(|q| q[k])
+                    .fold(f64::NEG_INFINITY, f64::max);
+                lo <= p[k] && p[k] <= hi
+            }),
+            "vertex {p:?} outside the spike's bounding box"
+        );
+    }
+    let want = mesh.volume();
+    assert!(want > 0.0 && mesh.tets.len() > 100);
+}

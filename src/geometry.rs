@@ -156,6 +156,20 @@ pub fn dist2_3(a: [f64; 3], b: [f64; 3]) -> f64 {
     v3(a).distance_squared(v3(b))
 }
 
+/// Squared distance from `q` to the segment `ab` (a point when `a == b`).
+pub fn dist2_point_segment3(q: [f64; 3], a: [f64; 3], b: [f64; 3]) -> f64 {
+    use glam::DVec3;
+    let (q, a, b) = (DVec3::from(q), DVec3::from(a), DVec3::from(b));
+    let e = b - a;
+    let l2 = e.length_squared();
+    let t = if l2 > 0.0 {
+        ((q - a).dot(e) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (q - (a + e * t)).length_squared()
+}
+
 /// Circumradius over shortest edge (∞ for a flat tetrahedron). 0.61 for the regular one.
 pub fn tet_radius_edge(c: [[f64; 3]; 4]) -> f64 {
     let Some(o) = tet_circumcenter(c) else {

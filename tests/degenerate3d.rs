@@ -681,7 +681,6 @@ fn bug_c_inset_stack_meets_radius_edge_2() {
 }
 
 #[test]
-#[ignore = "idmesh bug D: complete mesh with a tet of radius-edge 3.50 > 2 next to the internal facet of a rotated split box"]
 fn bug_d_rotated_split_box_meets_radius_edge_2() {
     // The box [0, 2] × [0, 2.4375] × [0, 2.5] split at x = 0.375, rotated by the quaternion
     // (9, -1, 0, -1) and divided by 64 (exact).

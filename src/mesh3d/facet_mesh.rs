@@ -15,7 +15,17 @@ use crate::predicates::{in_diametral_ball_seg3, incircle3d, orient2d};
 
 /// Ids of the three corners of the bounding triangle (paper §6: the facet mesh starts from a
 /// large triangle in the facet's plane; triangles touching it are never subfaces).
+///
+/// The corners are symbolic points at infinity, `λ·BDIR[k]` in projected coordinates as
+/// `λ → ∞`: every predicate involving them is its exact limit. A finite bounding triangle is
+/// not enough: the circumcircle of a needle triangle (0.07° angles in `u.off`) is hundreds of
+/// times larger than its facet and would hold a finite corner, so the facet's own edges would
+/// not be Delaunay in the facet mesh while they are in the 3D mesh.
 const BOUND: u32 = u32::MAX - 4;
+
+/// Directions of the corners at infinity (counter-clockwise, distinct lengths so that the
+/// limits of cocircular ties are decided by the directions alone).
+const BDIR: [[f64; 2]; 3] = [[-1.0, -1.0], [2.0, -1.0], [-1.0, 4.0]];
 
 #[inline]
 fn is_bound(v: u32) -> bool {
@@ -100,12 +110,27 @@ impl Outline {
     }
 }
 
+/// The exact sign of `cx (p.x - a.x) + cy (p.y - a.y)` for small integers `cx`, `cy`.
+fn lin_sign(cx: f64, cy: f64, p: [f64; 2], a: [f64; 2]) -> i32 {
+    use crate::exact::{two_prod, Expansion};
+    let mut e = Expansion::new();
+    for (c, x) in [(cx, p[0]), (-cx, a[0]), (cy, p[1]), (-cy, a[1])] {
+        let (hi, lo) = two_prod(c, x);
+        e.add(lo);
+        e.add(hi);
+    }
+    e.sign()
+}
+
+/// The sign of `cross(d, p - a)`.
+fn cross_sign(d: [f64; 2], p: [f64; 2], a: [f64; 2]) -> i32 {
+    lin_sign(-d[1], d[0], p, a)
+}
+
 /// One facet's Delaunay triangulation.
 pub(crate) struct FacetMesh {
     /// The coordinate dropped by the projection.
     pub axis: usize,
-    /// Corners of the bounding triangle (in the facet plane up to rounding).
-    bpts: [[f64; 3]; 3],
     tv: Vec<[u32; 3]>,
     /// `tn[t][i]`: half-edge `3t' + i'` across the edge opposite vertex `i` (`NONE` only on the
     /// bounding triangle's outer edges).
@@ -123,12 +148,10 @@ pub(crate) struct FacetMesh {
 }
 
 impl FacetMesh {
-    /// A facet mesh projecting along `axis`, holding only the bounding triangle `bound` (three
-    /// points of the facet plane whose triangle contains the facet with a wide margin).
-    pub fn new(axis: usize, outline: Outline, bound: [[f64; 3]; 3]) -> FacetMesh {
+    /// A facet mesh projecting along `axis`, holding only the bounding triangle (at infinity).
+    pub fn new(axis: usize, outline: Outline) -> FacetMesh {
         let mut fm = FacetMesh {
             axis,
-            bpts: bound,
             tv: Vec::new(),
             tn: Vec::new(),
             alive: Vec::new(),
@@ -142,40 +165,8 @@ impl FacetMesh {
             bnd: Vec::new(),
             last: NONE,
         };
-        let [a, b, c] = bound.map(|p| fm.proj(p));
-        let v = if orient2d(a, b, c) > 0.0 {
-            [BOUND, BOUND + 1, BOUND + 2]
-        } else {
-            [BOUND, BOUND + 2, BOUND + 1]
-        };
-        fm.last = fm.alloc(v);
+        fm.last = fm.alloc([BOUND, BOUND + 1, BOUND + 2]);
         fm
-    }
-
-    /// The bounding triangle for a facet through `a, b, c` (not collinear) containing every
-    /// point of `pts`: an equilateral triangle in the plane whose inscribed circle has four
-    /// times the points' spread around their centroid.
-    pub fn bounding_triangle(
-        a: [f64; 3],
-        b: [f64; 3],
-        c: [f64; 3],
-        pts: &[[f64; 3]],
-    ) -> [[f64; 3]; 3] {
-        use glam::DVec3;
-        let (a, b, c) = (DVec3::from(a), DVec3::from(b), DVec3::from(c));
-        let u = (b - a).normalize();
-        let w = (b - a).cross(c - a).cross(b - a).normalize();
-        let o = pts.iter().map(|&p| DVec3::from(p)).sum::<DVec3>() / pts.len().max(1) as f64;
-        let r = pts
-            .iter()
-            .map(|&p| DVec3::from(p).distance(o))
-            .fold(0.0f64, f64::max)
-            .max(1e-300);
-        // Inradius 4r: circumradius 8r.
-        [90.0f64, 210.0, 330.0].map(|deg| {
-            let t = deg.to_radians();
-            (o + 8.0 * r * (t.cos() * u + t.sin() * w)).to_array()
-        })
     }
 
     #[inline]
@@ -187,12 +178,27 @@ impl FacetMesh {
         }
     }
 
+    /// Coordinates of a finite vertex.
     #[inline]
     fn pt(&self, v: u32, pts: &[[f64; 3]]) -> [f64; 3] {
-        if is_bound(v) {
-            self.bpts[(v - BOUND) as usize]
-        } else {
-            pts[v as usize]
+        debug_assert!(!is_bound(v));
+        pts[v as usize]
+    }
+
+    /// The orientation sign of `(a, b, p)` in projection, `a` and `b` vertex ids (possibly
+    /// corners at infinity), `p` a finite projected point: the exact limit.
+    fn orient(&self, a: u32, b: u32, p: [f64; 2], pts: &[[f64; 3]]) -> f64 {
+        match (is_bound(a), is_bound(b)) {
+            (false, false) => orient2d(self.pp(a, pts), self.pp(b, pts), p),
+            (false, true) => cross_sign(BDIR[(b - BOUND) as usize], p, self.pp(a, pts)) as f64,
+            (true, false) => -cross_sign(BDIR[(a - BOUND) as usize], p, self.pp(b, pts)) as f64,
+            (true, true) => {
+                if b - BOUND == (a - BOUND + 1) % 3 {
+                    1.0
+                } else {
+                    -1.0
+                }
+            }
         }
     }
 
@@ -340,6 +346,9 @@ impl FacetMesh {
     /// A half-edge `3t + i` whose edge joins `a` and `b` (either direction).
     fn find_half_edge(&self, a: u32, b: u32) -> Option<u32> {
         let &t0 = self.vtri.get(&a)?;
+        if !self.alive[t0 as usize] {
+            return None;
+        }
         let mut t = t0;
         // The star of a facet vertex is a closed cycle (the bounding triangle surrounds it).
         for _ in 0..self.tv.len() + 1 {
@@ -360,9 +369,41 @@ impl FacetMesh {
         None
     }
 
+    /// Whether `p` lies strictly inside the circumcircle of triangle `t`. For triangles with
+    /// corners at infinity the circle's limit is a half-plane: beyond the edge `x y` for one
+    /// corner, beyond the parallel through `x` to the corners' edge for two.
     fn conflict(&self, t: u32, p: [f64; 3], pts: &[[f64; 3]]) -> bool {
-        let [a, b, c] = self.tv[t as usize].map(|x| self.pt(x, pts));
-        incircle3d(a, b, c, p) > 0.0
+        let v = self.tv[t as usize];
+        let nb = v.iter().filter(|&&x| is_bound(x)).count();
+        match nb {
+            0 => {
+                let [a, b, c] = v.map(|x| self.pt(x, pts));
+                incircle3d(a, b, c, p) > 0.0
+            }
+            1 => {
+                let k = (0..3).find(|&k| is_bound(v[k])).unwrap_or(0);
+                let (x, y) = (self.pp(v[next(k)], pts), self.pp(v[prev(k)], pts));
+                let p2 = self.proj(p);
+                let o = orient2d(x, y, p2);
+                o > 0.0 || (o == 0.0 && crate::exact::dot_sign_2d(x, y, p2) < 0)
+            }
+            2 => {
+                let k = (0..3).find(|&k| !is_bound(v[k])).unwrap_or(0);
+                let di = BDIR[(v[next(k)] - BOUND) as usize];
+                let dj = BDIR[(v[prev(k)] - BOUND) as usize];
+                let e = [dj[0] - di[0], dj[1] - di[1]];
+                let (x, p2) = (self.pp(v[k], pts), self.proj(p));
+                match cross_sign(e, p2, x) {
+                    c if c < 0 => true,
+                    0 => {
+                        let s = (dj[0] * dj[0] + dj[1] * dj[1]) - (di[0] * di[0] + di[1] * di[1]);
+                        (lin_sign(e[0], e[1], p2, x) as f64) * s > 0.0
+                    }
+                    _ => false,
+                }
+            }
+            _ => true,
+        }
     }
 
     /// Classifies a new triangle: inside the facet polygon or not.
@@ -391,9 +432,7 @@ impl FacetMesh {
             rot = (rot + 1) % 3;
             for d in 0..3 {
                 let i = (rot + d) % 3;
-                let a = self.pp(v[next(i)], pts);
-                let b = self.pp(v[prev(i)], pts);
-                if orient2d(a, b, p2) < 0.0 {
+                if self.orient(v[next(i)], v[prev(i)], p2, pts) < 0.0 {
                     let h = self.tn[t as usize][i];
                     if h == NONE {
                         return None; // outside the bounding triangle
@@ -406,8 +445,8 @@ impl FacetMesh {
         }
         (0..self.tv.len() as u32).find(|&t| {
             self.alive[t as usize] && {
-                let v = self.tv[t as usize].map(|x| self.pp(x, pts));
-                (0..3).all(|i| orient2d(v[next(i)], v[prev(i)], p2) >= 0.0)
+                let v = self.tv[t as usize];
+                (0..3).all(|i| self.orient(v[next(i)], v[prev(i)], p2, pts) >= 0.0)
             }
         })
     }
@@ -426,6 +465,11 @@ impl FacetMesh {
         on_one_edge: &dyn Fn([u32; 3]) -> bool,
         split_of: Option<[u32; 2]>,
     ) -> Result<FacetChange, FacetInsertError> {
+        if let Some([a, b]) = split_of {
+            if let Some(h) = self.find_half_edge(a, b) {
+                return self.split_edge(pv, h, pts, is_subseg, on_one_edge);
+            }
+        }
         match self.insert_with(
             pv,
             pts,
@@ -461,12 +505,7 @@ impl FacetMesh {
         let split_edge = split_of.and_then(|[a, b]| self.find_half_edge(a, b));
         let start = match split_edge {
             Some(h) => h / 3,
-            None => self.locate(p, pts).ok_or_else(|| {
-                if std::env::var("IDM_DBG").is_ok() {
-                    eprintln!("lost: locate");
-                }
-                FacetInsertError::Lost
-            })?,
+            None => self.locate(p, pts).ok_or(FacetInsertError::Lost)?,
         };
         for &x in &self.tv[start as usize] {
             if !is_bound(x) && pts[x as usize] == p {
@@ -529,20 +568,11 @@ impl FacetMesh {
                     if h != NONE && self.stamp[(h / 3) as usize] == cur {
                         continue;
                     }
-                    let o = orient2d(
-                        self.pp(v[next(i)], pts),
-                        self.pp(v[prev(i)], pts),
-                        self.proj(p),
-                    );
+                    let o = self.orient(v[next(i)], v[prev(i)], self.proj(p), pts);
                     if o <= 0.0 {
                         if seeds.contains(&t) {
                             if h == NONE {
-                                {
-                                    if std::env::var("IDM_DBG").is_ok() {
-                                        eprintln!("lost: seed on bounding edge");
-                                    }
-                                    return Err(FacetInsertError::Lost);
-                                }
+                                return Err(FacetInsertError::Lost);
                             }
                             grow.push(h / 3);
                             continue;
@@ -622,19 +652,7 @@ impl FacetMesh {
             .collect();
         starts.sort_unstable();
         if starts.windows(2).any(|w| w[0] == w[1]) {
-            {
-                if std::env::var("IDM_DBG").is_ok() {
-                    eprintln!(
-                        "lost: pinched boundary {} cav {:?} split {split_of:?} seeds {seeds:?}",
-                        pv,
-                        self.cav
-                            .iter()
-                            .map(|&t| self.tv[t as usize])
-                            .collect::<Vec<_>>()
-                    );
-                }
-                return Err(FacetInsertError::Lost);
-            }
+            return Err(FacetInsertError::Lost);
         }
         change.encroached = crossed;
         for &t in &self.cav {
@@ -693,6 +711,203 @@ impl FacetMesh {
         Ok(change)
     }
 
+    /// Inserts the split point `pv` of the edge of half-edge `h` by splitting that edge and its
+    /// two triangles (a topological 2-to-4 split), then restores Delaunay by flips.
+    ///
+    /// A split point lies on its subsegment up to rounding, so the split needs no orientation
+    /// test; a Bowyer–Watson cavity built from the rounded point can be non-star-shaped next to
+    /// needle triangles (angles of a few hundredths of a degree), while the flips below only
+    /// ask the exact 3D in-circle test. In exact coplanar arithmetic both give the same mesh:
+    /// the triangles flipped away are exactly those whose circumcircle holds the point.
+    fn split_edge(
+        &mut self,
+        pv: u32,
+        h: u32,
+        pts: &[[f64; 3]],
+        is_subseg: &dyn Fn(u32, u32) -> bool,
+        on_one_edge: &dyn Fn([u32; 3]) -> bool,
+    ) -> Result<FacetChange, FacetInsertError> {
+        let p = pts[pv as usize];
+        let (t, i) = (h / 3, (h % 3) as usize);
+        let o = self.tn[t as usize][i];
+        if o == NONE {
+            return Err(FacetInsertError::Lost);
+        }
+        let (n, j) = (o / 3, (o % 3) as usize);
+        let tv = self.tv[t as usize];
+        let nv = self.tv[n as usize];
+        let (c, x, y) = (tv[i], tv[next(i)], tv[prev(i)]);
+        let d = nv[j];
+        for q in [c, x, y, d] {
+            if !is_bound(q) && pts[q as usize] == p {
+                return Err(FacetInsertError::Duplicate(q));
+            }
+        }
+        let mut change = FacetChange::default();
+        let (in_t, in_n) = (self.inside[t as usize], self.inside[n as usize]);
+        if in_t {
+            change.removed.push(tv);
+        }
+        if in_n {
+            change.removed.push(nv);
+        }
+        // Outer neighbours: across y-c and c-x of (c, x, y); across x-d and d-y of (d, y, x).
+        let ayc = self.tn[t as usize][next(i)];
+        let bcx = self.tn[t as usize][prev(i)];
+        let cxd = self.tn[n as usize][next(j)];
+        let ddy = self.tn[n as usize][prev(j)];
+        // t1 = (c, x, p), t2 = (c, p, y), n1 = (d, y, p), n2 = (d, p, x).
+        let t1 = t;
+        self.tv[t1 as usize] = [c, x, pv];
+        self.tn[t1 as usize] = [NONE; 3];
+        let n1 = n;
+        self.tv[n1 as usize] = [d, y, pv];
+        self.tn[n1 as usize] = [NONE; 3];
+        let t2 = self.alloc([c, pv, y]);
+        let n2 = self.alloc([d, pv, x]);
+        self.link(3 * t1 + 2, bcx);
+        self.link(3 * t2 + 1, ayc);
+        self.link(3 * n1 + 2, ddy);
+        self.link(3 * n2 + 1, cxd);
+        self.link(3 * t1 + 1, 3 * t2 + 2);
+        self.link(3 * t1, 3 * n2);
+        self.link(3 * t2, 3 * n1);
+        self.link(3 * n1 + 1, 3 * n2 + 2);
+        for (tt, parent_inside) in [(t1, in_t), (t2, in_t), (n1, in_n), (n2, in_n)] {
+            let vv = self.tv[tt as usize];
+            let ins = parent_inside && !on_one_edge(vv);
+            self.inside[tt as usize] = ins;
+            if ins {
+                change.added.push(vv);
+            }
+            for &u in &vv {
+                if !is_bound(u) {
+                    self.vtri.insert(u, tt);
+                }
+            }
+        }
+        self.last = t1;
+        self.flip_from_split(
+            pv,
+            p,
+            pts,
+            [t1, t2, n1, n2],
+            is_subseg,
+            on_one_edge,
+            &mut change,
+        );
+        debug_assert!(self.check().is_ok(), "facet mesh: {:?}", self.check());
+        Ok(change)
+    }
+
+    /// Lawson flips around the split point `pv` (see [`FacetMesh::split_edge`]): an edge of
+    /// its link is flipped when the exact in-circle test says the opposite corner lies in the
+    /// circle of `pv`'s triangle. As in the Bowyer–Watson cavity of a Steiner point, only
+    /// triangles inside the facet are flipped away (the outside is scaffolding). A subsegment
+    /// flipped away is reported in `change.encroached`, as are the subsegments of the final
+    /// link whose diametral ball holds the point. Orientation is not asked: for a point in
+    /// the circle and across the edge the quadrilateral is convex in exact arithmetic, and the
+    /// rounded projection must not veto what the 3D mesh will do.
+    #[allow(clippy::too_many_arguments)]
+    fn flip_from_split(
+        &mut self,
+        pv: u32,
+        p: [f64; 3],
+        pts: &[[f64; 3]],
+        created: [u32; 4],
+        is_subseg: &dyn Fn(u32, u32) -> bool,
+        on_one_edge: &dyn Fn([u32; 3]) -> bool,
+        change: &mut FacetChange,
+    ) {
+        let mut fresh: Vec<u32> = created.to_vec();
+        let mut stack: Vec<u32> = created.to_vec();
+        let mut budget = 4 * self.tv.len() + 64;
+        while let Some(t) = stack.pop() {
+            if budget == 0 {
+                break;
+            }
+            budget -= 1;
+            if !self.alive[t as usize] {
+                continue;
+            }
+            let v = self.tv[t as usize];
+            let Some(k) = (0..3).find(|&k| v[k] == pv) else {
+                continue;
+            };
+            let (x, y) = (v[next(k)], v[prev(k)]);
+            let h = self.tn[t as usize][k];
+            if h == NONE || is_bound(x) || is_bound(y) {
+                continue;
+            }
+            let (n, j) = (h / 3, (h % 3) as usize);
+            if !self.inside[n as usize] || !self.inside[t as usize] {
+                continue;
+            }
+            let q = self.tv[n as usize][j];
+            if is_bound(q) || q == pv {
+                continue;
+            }
+            if !self.conflict(n, p, pts) {
+                continue;
+            }
+            if is_subseg(x, y) {
+                let s = if x < y { [x, y] } else { [y, x] };
+                if !change.encroached.contains(&s) {
+                    change.encroached.push(s);
+                }
+            }
+            let a_ = self.tn[t as usize][next(k)];
+            let b_ = self.tn[t as usize][prev(k)];
+            let c_ = self.tn[n as usize][next(j)];
+            let d_ = self.tn[n as usize][prev(j)];
+            self.tv[t as usize] = [pv, x, q];
+            self.tv[n as usize] = [pv, q, y];
+            self.link(3 * t, c_);
+            self.link(3 * t + 2, b_);
+            self.link(3 * n, d_);
+            self.link(3 * n + 1, a_);
+            self.link(3 * t + 1, 3 * n + 2);
+            if !fresh.contains(&n) {
+                // `n` was an old inside triangle: it is gone.
+                change.removed.push([q, y, x]);
+                fresh.push(n);
+            }
+            for tt in [t, n] {
+                // Both triangles were inside, so their union is: no outline test needed.
+                let vv = self.tv[tt as usize];
+                self.inside[tt as usize] = !on_one_edge(vv);
+                for &u in &vv {
+                    if !is_bound(u) {
+                        self.vtri.insert(u, tt);
+                    }
+                }
+                stack.push(tt);
+            }
+        }
+        change.added.clear();
+        for &t in &fresh {
+            if !(self.alive[t as usize] && self.inside[t as usize]) {
+                continue;
+            }
+            let v = self.tv[t as usize];
+            change.added.push(v);
+            let k = (0..3)
+                .position(|k| v[k] == pv)
+                .expect("fresh triangles hold the point");
+            let (x, y) = (v[next(k)], v[prev(k)]);
+            if !is_bound(x)
+                && !is_bound(y)
+                && is_subseg(x, y)
+                && in_diametral_ball_seg3(pts[x as usize], pts[y as usize], p)
+            {
+                let s = if x < y { [x, y] } else { [y, x] };
+                if !change.encroached.contains(&s) {
+                    change.encroached.push(s);
+                }
+            }
+        }
+    }
+
     /// Lawson flips around the new vertex `pv` until its link is locally Delaunay (never
     /// flipping a subsegment, and only convex quadrilaterals, so the mesh stays valid whatever
     /// rounding does). `created` are the triangles just made; `change` is updated.
@@ -728,12 +943,11 @@ impl FacetMesh {
             }
             let (n, j) = (h / 3, (h % 3) as usize);
             let q = self.tv[n as usize][j];
-            let (px, py, pq) = (self.pt(x, pts), self.pt(y, pts), self.pt(q, pts));
-            if incircle3d(p, px, py, pq) <= 0.0 {
+            if !self.conflict(n, p, pts) {
                 continue;
             }
-            let (p2, x2, y2, q2) = (self.proj(p), self.proj(px), self.proj(py), self.proj(pq));
-            if orient2d(p2, x2, q2) <= 0.0 || orient2d(p2, q2, y2) <= 0.0 {
+            let p2 = self.proj(p);
+            if self.orient(x, q, p2, pts) <= 0.0 || self.orient(q, y, p2, pts) <= 0.0 {
                 continue;
             }
             let a_ = self.tn[t as usize][next(k)];
@@ -808,17 +1022,12 @@ mod tests {
     use super::*;
 
     fn build(pts: &[[f64; 3]], convex: bool) -> FacetMesh {
-        let c = (2..pts.len())
-            .find(|&k| crate::predicates::orient2d_proj(pts[0], pts[1], pts[k], 2) != 0.0)
-            .unwrap();
-        let bound = FacetMesh::bounding_triangle(pts[0], pts[1], pts[c], pts);
         let mut fm = FacetMesh::new(
             2,
             Outline {
                 loops: vec![],
                 convex,
             },
-            bound,
         );
         let no = |_: u32, _: u32| false;
         let flat = |_: [u32; 3]| false;

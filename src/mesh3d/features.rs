@@ -66,6 +66,9 @@ pub(crate) struct Features {
     pub vert_facets: HashMap<u32, Vec<u32>>,
     /// The input edge of each Steiner point made by splitting a subsegment.
     pub split_edge: HashMap<u32, u32>,
+    /// Per facet: the representative of its group of exactly coplanar facets joined along
+    /// input edges (a triangulated surface's flat parts).
+    pub plane_group: Vec<u32>,
     /// Per vertex: lies on a segment or facet (so simplices made only of such vertices may be
     /// features). A cheap filter before hash lookups.
     pub on_feature: Vec<bool>,
@@ -216,7 +219,9 @@ impl Features {
         for &v in vert_facets.keys() {
             on_feature[v as usize] = true;
         }
+        let plane_group = coplanar_groups(&plc.points, &facets, &edges);
         Ok(Features {
+            plane_group,
             edges,
             facets,
             subsegs,
@@ -270,7 +275,9 @@ impl Features {
     /// flat; with Steiner points rounded off a slanted facet it is a rounding sliver lying in
     /// the facet, which no refinement can improve (its circumcenter is far away).
     pub fn in_one_facet(&self, t: [u32; 4]) -> bool {
-        self.common_facet(&t).is_some()
+        // Exactly coplanar neighbouring facets count as one: a tet across their common edge
+        // is just as flat.
+        self.plane_facet(&t).is_some()
     }
 
     /// A facet containing all the given feature vertices, if there is one.
@@ -283,6 +290,26 @@ impl Features {
             vs[1..]
                 .iter()
                 .all(|v| self.vert_facets.get(v).is_some_and(|fs| fs.contains(f)))
+        })
+    }
+
+    /// A facet for a face whose corners all lie on one facet, or on one group of exactly
+    /// coplanar neighbouring facets (see [`Features::in_one_facet`]).
+    pub fn plane_facet(&self, vs: &[u32]) -> Option<u32> {
+        if let Some(f) = self.common_facet(vs) {
+            return Some(f);
+        }
+        if !vs.iter().all(|&v| self.is_feature(v)) {
+            return None;
+        }
+        let f0 = self.vert_facets.get(&vs[0])?;
+        f0.iter().copied().find(|&f| {
+            let g = self.plane_group[f as usize];
+            vs[1..].iter().all(|v| {
+                self.vert_facets
+                    .get(v)
+                    .is_some_and(|fs| fs.iter().any(|&h| self.plane_group[h as usize] == g))
+            })
         })
     }
 
@@ -357,5 +384,38 @@ fn vertices_on_edges(points: &[[f64; 3]], raw: &[(u32, u32, i32, Option<u32>)]) 
             });
             on
         })
+        .collect()
+}
+
+/// Groups facets that are exactly coplanar and joined along input edges (union–find); returns
+/// each facet's group representative.
+fn coplanar_groups(points: &[[f64; 3]], facets: &[FacetInfo], edges: &[InputEdge]) -> Vec<u32> {
+    fn root(parent: &mut [u32], mut x: u32) -> u32 {
+        while parent[x as usize] != x {
+            let up = parent[parent[x as usize] as usize];
+            parent[x as usize] = up;
+            x = up;
+        }
+        x
+    }
+    let mut parent: Vec<u32> = (0..facets.len() as u32).collect();
+    let coplanar = |f: &FacetInfo, g: &FacetInfo| {
+        let [a, b, c] = f.plane.map(|v| points[v as usize]);
+        g.vertices
+            .iter()
+            .all(|&v| crate::predicates::orient3d(a, b, c, points[v as usize]) == 0.0)
+    };
+    for e in edges {
+        for (i, &f1) in e.facets.iter().enumerate() {
+            for &f2 in &e.facets[i + 1..] {
+                let (r1, r2) = (root(&mut parent, f1), root(&mut parent, f2));
+                if r1 != r2 && coplanar(&facets[f1 as usize], &facets[f2 as usize]) {
+                    parent[r1.max(r2) as usize] = r1.min(r2);
+                }
+            }
+        }
+    }
+    (0..facets.len() as u32)
+        .map(|f| root(&mut parent, f))
         .collect()
 }

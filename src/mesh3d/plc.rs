@@ -78,6 +78,25 @@ struct Mesher<'a> {
     scratch_segs: Vec<[u32; 2]>,
     scratch_faces: Vec<([u32; 3], u32)>,
     scratch_new: Vec<u32>,
+    /// What the Steiner points were made for, for the progress lines of `-V`.
+    counts: Counts,
+}
+
+/// Steiner point counts by cause, reported in verbose progress lines.
+#[derive(Default, Debug)]
+struct Counts {
+    /// Subsegments split because missing from the 3D mesh or a facet mesh (or encroached).
+    seg_missing: u64,
+    /// Subsegments split because a refused point encroached them.
+    seg_forced: u64,
+    /// Subfaces split because missing from the 3D mesh (or encroached).
+    face_missing: u64,
+    /// Subfaces split because a refused point encroached them.
+    face_forced: u64,
+    /// Circumcenters of tetrahedra inserted.
+    tet: u64,
+    /// Circumcenters of tetrahedra refused (encroaching).
+    tet_refused: u64,
 }
 
 /// Meshes a PLC (already checked).
@@ -91,15 +110,7 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
     let fmesh = feat
         .facets
         .iter()
-        .map(|f| {
-            let vp: Vec<[f64; 3]> = f.vertices.iter().map(|&v| plc.points[v as usize]).collect();
-            let [a, b, c] = f.plane.map(|v| plc.points[v as usize]);
-            FacetMesh::new(
-                f.axis,
-                f.outline.clone(),
-                FacetMesh::bounding_triangle(a, b, c, &vp),
-            )
-        })
+        .map(|f| FacetMesh::new(f.axis, f.outline.clone()))
         .collect();
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for p in &plc.points {
@@ -134,6 +145,7 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
         scratch_segs: Vec::new(),
         scratch_faces: Vec::new(),
         scratch_new: Vec::new(),
+        counts: Counts::default(),
     };
     m.sharp = Sharp::find(plc, &m.feat);
     m.insert_input_points()?;
@@ -423,12 +435,21 @@ impl Mesher<'_> {
         let budget = 1u64 << 40;
         for it in 0..budget {
             if self.opts.verbose && it % (1 << 12) == (1 << 12) - 1 {
+                let c = &self.counts;
                 eprintln!(
-                    "idmesh: work queue: {} subsegments, {} subfaces, {} tets; {} Steiner points",
+                    "idmesh: work queue: {} subsegments, {} subfaces, {} tets; {} Steiner points \
+                     (segment splits {}+{} forced, facet splits {}+{} forced, tet circumcenters {}, \
+                     {} refused)",
                     self.seg_q.len(),
                     self.face_q.len(),
                     self.tet_q.len(),
-                    self.steiner
+                    self.steiner,
+                    c.seg_missing,
+                    c.seg_forced,
+                    c.face_missing,
+                    c.face_forced,
+                    c.tet,
+                    c.tet_refused
                 );
             }
             if let Some((s, force)) = self.seg_q.pop_front() {
@@ -517,6 +538,11 @@ impl Mesher<'_> {
         }
         let m = self.new_vertex(mid)?;
         self.steiner += 1;
+        if force {
+            self.counts.seg_forced += 1;
+        } else {
+            self.counts.seg_missing += 1;
+        }
         self.feat.split_subseg(a, b, m, e);
         self.seg_q.push_back(([a, m], false));
         self.seg_q.push_back(([m, b], false));
@@ -645,6 +671,11 @@ impl Mesher<'_> {
             }
         }
         self.steiner += 1;
+        if force {
+            self.counts.face_forced += 1;
+        } else {
+            self.counts.face_missing += 1;
+        }
         self.feat.mark_feature(m);
         self.feat.vert_facets.insert(m, vec![fid]);
         self.insert3d(m, false)
@@ -675,7 +706,7 @@ impl Mesher<'_> {
         }
         let c = vs.map(|x| self.pts[x as usize]);
         if let Some(rho) = self.opts.radius_edge {
-            if tet_radius_edge(c) > rho && !self.sharp.exempts(vs, &self.feat) {
+            if tet_radius_edge(c) > rho && !self.sharp.exempts(vs, &self.feat, &self.pts) {
                 return true;
             }
         }
@@ -718,13 +749,21 @@ impl Mesher<'_> {
         if self.below_floor(&c) {
             return Ok(());
         }
-        let Some(cc) = tet_circumcenter(c) else {
+        let Some(mut cc) = tet_circumcenter(c) else {
             return Ok(());
         };
+        // The rounded circumcenter of a nearly flat tet (four nearly cocircular points) can be
+        // far from the true one and outside the tet's circumsphere: inserting it would leave
+        // the tet in place. Its centroid is in the sphere (inside the tet) and removes it.
+        let o = crate::predicates::orient3d(c[0], c[1], c[2], c[3]);
+        if crate::predicates::insphere(c[0], c[1], c[2], c[3], cc) * o <= 0.0 {
+            cc = [0, 1, 2].map(|k| 0.25 * (c[0][k] + c[1][k] + c[2][k] + c[3][k]));
+        }
         let m = self.new_vertex(cc)?;
         match self.insert3d(m, true) {
             Ok(()) => {
                 self.steiner += 1;
+                self.counts.tet += 1;
                 if self.opts.verbose && self.steiner % 100_000 == 0 {
                     eprintln!("idmesh: {} Steiner points", self.steiner);
                 }
@@ -732,8 +771,18 @@ impl Mesher<'_> {
             }
             Err(enc) => {
                 self.pts.pop();
+                self.counts.tet_refused += 1;
                 if enc.is_empty() {
-                    // The circumcenter coincides with a vertex, or lies outside the box.
+                    // The circumcenter coincides with a vertex, or lies outside the box. Outside
+                    // the box it is outside the domain, beyond a facet: the subface the way to
+                    // it crosses first is split instead (Ruppert's rule; its diametral ball
+                    // holds the circumcenter in exact arithmetic).
+                    if !self.in_box(cc) {
+                        if let Some((f, fid)) = self.subface_towards(t, cc) {
+                            self.face_q.push_back((f, fid, true));
+                            self.tet_q.push_back((t, vs));
+                        }
+                    }
                     return Ok(());
                 }
                 for e in enc {
@@ -746,6 +795,57 @@ impl Mesher<'_> {
                 Ok(())
             }
         }
+    }
+
+    /// The first subface met walking from tet `t` straight towards `p` (through the faces the
+    /// segment from `t`'s centroid to `p` crosses), if the walk meets one before leaving the
+    /// mesh; exact orientation tests, bounded steps.
+    fn subface_towards(&self, t: u32, p: [f64; 3]) -> Option<([u32; 3], u32)> {
+        let c = self.tets.verts(t).map(|x| self.pts[x as usize]);
+        let q = [0, 1, 2].map(|k| 0.25 * (c[0][k] + c[1][k] + c[2][k] + c[3][k]));
+        let mut cur = t;
+        let mut from = NONE;
+        for _ in 0..10_000 {
+            let vs = self.tets.verts(cur);
+            if vs.contains(&GHOST) {
+                return None;
+            }
+            let pt = vs.map(|x| self.pts[x as usize]);
+            let mut exit = None;
+            for (f, &opp) in pt.iter().enumerate() {
+                let (n, _) = self.tets.neighbor(cur, f);
+                if n == from {
+                    continue;
+                }
+                let fv = face_of(vs, f);
+                let [a, b, cc] = fv.map(|x| self.pts[x as usize]);
+                let side_p = orient3d(a, b, cc, p);
+                let side_v = orient3d(a, b, cc, opp);
+                if side_p == 0.0 || side_p.signum() == side_v.signum() {
+                    continue; // p is not beyond this face
+                }
+                // The segment q→p goes through the face's triangle.
+                let s = [
+                    orient3d(q, p, a, b),
+                    orient3d(q, p, b, cc),
+                    orient3d(q, p, cc, a),
+                ];
+                let through = s.iter().all(|&x| x >= 0.0) || s.iter().all(|&x| x <= 0.0);
+                if through || exit.is_none() {
+                    exit = Some((f, fv, n));
+                    if through {
+                        break;
+                    }
+                }
+            }
+            let (_, fv, n) = exit?;
+            if let Some(fid) = self.feat.subface(fv) {
+                return Some((fv, fid));
+            }
+            from = cur;
+            cur = n;
+        }
+        None
     }
 
     /// Gives the tets made while conformity was broken (region [`UNKNOWN`]) their region, now
@@ -1005,7 +1105,7 @@ impl Mesher<'_> {
                 if let Some(fid) = self.feat.subface(fv) {
                     faces.push((fkey(fv), fid));
                 } else if !dropped.is_empty() && dropped.contains(&self.tets.neighbor(t, f).0) {
-                    if let Some(fid) = self.feat.common_facet(&fv) {
+                    if let Some(fid) = self.feat.plane_facet(&fv) {
                         faces.push((fkey(fv), fid));
                     }
                 }
@@ -1122,7 +1222,28 @@ struct Sharp {
     edges: crate::hash::FastSet<u32>,
     /// Facet pairs (smaller id first) meeting below 60° along an edge or at a vertex.
     facet_pairs: crate::hash::FastSet<(u32, u32)>,
+    /// Input edge pairs (smaller id first) meeting at a sharp vertex: a tet with vertices on
+    /// both spans the narrow wedge between them, however far from the apex (Triangle's rule
+    /// for a skinny triangle whose short edge faces a small input angle).
+    seg_pairs: crate::hash::FastSet<(u32, u32)>,
+    /// Per facet: protection zones of the sharp edges and vertices on it (segment ends and
+    /// squared radius; a vertex is a zero-length segment). Tets with a vertex on the facet
+    /// inside a zone are exempt: next to a sharp edge the facets' refinement feeds itself
+    /// (each split near one facet encroaches the other), ever closer to the edge.
+    zones: Vec<Vec<Zone>>,
 }
+
+/// A protection zone: the points within `sqrt(r2)` of the segment `a b`.
+#[derive(Clone, Copy)]
+struct Zone {
+    a: [f64; 3],
+    b: [f64; 3],
+    r2: f64,
+}
+
+/// Radius of the protection zone of a sharp edge or vertex, relative to the length of the
+/// edge (or of the shortest input edge at the vertex).
+const ZONE_FRACTION: f64 = 0.25;
 
 impl Sharp {
     fn find(plc: &Plc, feat: &Features) -> Sharp {
@@ -1149,6 +1270,10 @@ impl Sharp {
                     let share = facets_of(a).iter().any(|f| facets_of(b).contains(f));
                     if (cos > small && !share) || cos > 30f64.to_radians().cos() {
                         sharp.vertices.insert(v);
+                        let edge = |w: u32| feat.subsegs.get(&super::features::ekey(v, w));
+                        if let (Some(&e1), Some(&e2)) = (edge(a), edge(b)) {
+                            sharp.seg_pairs.insert((e1.min(e2), e1.max(e2)));
+                        }
                     }
                 }
             }
@@ -1182,7 +1307,44 @@ impl Sharp {
                 }
             }
         }
+        sharp.zones = vec![Vec::new(); feat.facets.len()];
+        for &ei in &sharp.edges {
+            let [a, b] = feat.edges[ei as usize].ends;
+            let r = ZONE_FRACTION * (p(b) - p(a)).length();
+            for &f in &feat.edges[ei as usize].facets {
+                sharp.zones[f as usize].push(Zone {
+                    a: p(a).to_array(),
+                    b: p(b).to_array(),
+                    r2: r * r,
+                });
+            }
+        }
+        for &v in &sharp.vertices {
+            let shortest = feat.seg_adj.get(&v).map_or(0.0, |l| {
+                l.iter()
+                    .map(|&w| (p(w) - p(v)).length())
+                    .fold(f64::INFINITY, f64::min)
+            });
+            let r = ZONE_FRACTION * shortest;
+            if r.is_finite() && r > 0.0 {
+                for &f in feat.vert_facets.get(&v).into_iter().flatten() {
+                    sharp.zones[f as usize].push(Zone {
+                        a: p(v).to_array(),
+                        b: p(v).to_array(),
+                        r2: r * r,
+                    });
+                }
+            }
+        }
         sharp
+    }
+
+    /// Whether a vertex on facet `f` at `q` lies in a protection zone of the facet.
+    fn in_zone(&self, f: u32, q: [f64; 3]) -> bool {
+        self.zones.get(f as usize).is_some_and(|zs| {
+            zs.iter()
+                .any(|z| crate::geometry::dist2_point_segment3(q, z.a, z.b) < z.r2)
+        })
     }
 
     /// Whether the input has no small angle at all.
@@ -1191,7 +1353,7 @@ impl Sharp {
     }
 
     /// Whether a tet with these vertices touches a small input angle.
-    fn exempts(&self, vs: [u32; 4], feat: &Features) -> bool {
+    fn exempts(&self, vs: [u32; 4], feat: &Features, pts: &[[f64; 3]]) -> bool {
         if self.vertices.is_empty() && self.edges.is_empty() {
             return false;
         }
@@ -1199,8 +1361,33 @@ impl Sharp {
             if self.vertices.contains(&v) {
                 return true;
             }
+            if let Some(fs) = feat.vert_facets.get(&v) {
+                if fs.iter().any(|&f| self.in_zone(f, pts[v as usize])) {
+                    return true;
+                }
+            }
             if let Some(e) = feat.split_edge.get(&v) {
                 if self.edges.contains(e) {
+                    return true;
+                }
+            }
+        }
+        if !self.seg_pairs.is_empty() {
+            // The shortest edge decides the ratio: exempt when it crosses such a wedge.
+            let (i, j) = EDGES
+                .iter()
+                .copied()
+                .min_by(|&(a, b), &(c, d)| {
+                    let l = |x: usize, y: usize| {
+                        crate::geometry::dist2_3(pts[vs[x] as usize], pts[vs[y] as usize])
+                    };
+                    l(a, b).total_cmp(&l(c, d))
+                })
+                .unwrap_or((0, 1));
+            if let (Some(&e1), Some(&e2)) =
+                (feat.split_edge.get(&vs[i]), feat.split_edge.get(&vs[j]))
+            {
+                if e1 != e2 && self.seg_pairs.contains(&(e1.min(e2), e1.max(e2))) {
                     return true;
                 }
             }

@@ -1226,10 +1226,11 @@ struct Sharp {
     /// both spans the narrow wedge between them, however far from the apex (Triangle's rule
     /// for a skinny triangle whose short edge faces a small input angle).
     seg_pairs: crate::hash::FastSet<(u32, u32)>,
-    /// Per facet: protection zones of the sharp edges and vertices on it (segment ends and
-    /// squared radius; a vertex is a zero-length segment). Tets with a vertex on the facet
-    /// inside a zone are exempt: next to a sharp edge the facets' refinement feeds itself
-    /// (each split near one facet encroaches the other), ever closer to the edge.
+    /// Per facet: protection zones of the sharp edges on it. Tets with a vertex on the facet
+    /// inside a zone are exempt: next to a sharp edge the two facets' refinement feeds itself
+    /// (each split near one facet encroaches the other), ever closer to the edge. (Sharp
+    /// vertices need no zone: the tets touching them and those crossing the wedge between
+    /// their edges are exempt.)
     zones: Vec<Vec<Zone>>,
 }
 
@@ -1241,8 +1242,7 @@ struct Zone {
     r2: f64,
 }
 
-/// Radius of the protection zone of a sharp edge or vertex, relative to the length of the
-/// edge (or of the shortest input edge at the vertex).
+/// Radius of the protection zone of a sharp edge, relative to the edge's length.
 const ZONE_FRACTION: f64 = 0.25;
 
 impl Sharp {
@@ -1317,23 +1317,6 @@ impl Sharp {
                     b: p(b).to_array(),
                     r2: r * r,
                 });
-            }
-        }
-        for &v in &sharp.vertices {
-            let shortest = feat.seg_adj.get(&v).map_or(0.0, |l| {
-                l.iter()
-                    .map(|&w| (p(w) - p(v)).length())
-                    .fold(f64::INFINITY, f64::min)
-            });
-            let r = ZONE_FRACTION * shortest;
-            if r.is_finite() && r > 0.0 {
-                for &f in feat.vert_facets.get(&v).into_iter().flatten() {
-                    sharp.zones[f as usize].push(Zone {
-                        a: p(v).to_array(),
-                        b: p(v).to_array(),
-                        r2: r * r,
-                    });
-                }
             }
         }
         sharp

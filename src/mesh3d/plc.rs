@@ -172,6 +172,21 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
             m.run()?;
         }
     }
+    // A rounding sliver lying in a facet with the domain on both sides (an internal facet)
+    // cannot be left out of the output like those touching the outside: split its subface
+    // (the facet point at its circumcentre removes it) and refine again.
+    if !m.opts.keep_surface {
+        for _round in 0..8 {
+            let faces = m.interior_flat_slivers();
+            if faces.is_empty() || !m.complete {
+                break;
+            }
+            for (f, fid) in faces {
+                m.face_q.push_back((f, fid, true));
+            }
+            m.run()?;
+        }
+    }
     m.output(plc)
 }
 
@@ -1109,6 +1124,29 @@ impl Mesher<'_> {
                 return dropped;
             }
         }
+    }
+
+    /// A subface of each rounding sliver (all four vertices on one facet plane) whose four
+    /// neighbours are all in the domain.
+    fn interior_flat_slivers(&self) -> Vec<([u32; 3], u32)> {
+        let inside = |t: u32| !self.tets.is_ghost(t) && self.region_of(t) < UNKNOWN;
+        let mut out = Vec::new();
+        for t in 0..self.tets.num_slots() as u32 {
+            if !self.tets.alive(t) || !inside(t) {
+                continue;
+            }
+            let vs = self.tets.verts(t);
+            if !self.feat.in_one_facet(vs) || !(0..4).all(|f| inside(self.tets.neighbor(t, f).0)) {
+                continue;
+            }
+            if let Some((fv, fid)) = (0..4).find_map(|f| {
+                let fv = face_of(vs, f);
+                self.feat.subface(fv).map(|fid| (fv, fid))
+            }) {
+                out.push((fv, fid));
+            }
+        }
+        out
     }
 
     fn output(&self, plc: &Plc) -> Result<TetMesh, Error> {

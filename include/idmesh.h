@@ -203,6 +203,13 @@ typedef struct idm_options3d {
    * Print progress lines to standard error during long runs. Default 0.
    */
   int32_t verbose;
+  /**
+   * Keep the input surface (TetGen's `-Y`): no Steiner points on input edges or facets;
+   * refine fails with `IDM_ERR_UNSUPPORTED` when a segment or facet triangle is not in the
+   * Delaunay tetrahedralization without them (see the Rust `Options3::keep_surface`).
+   * Default 0.
+   */
+  int32_t keep_surface;
 } idm_options3d;
 
 /**

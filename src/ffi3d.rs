@@ -44,6 +44,11 @@ pub struct idm_options3d {
     pub max_steiner: i64,
     /// Print progress lines to standard error during long runs. Default 0.
     pub verbose: i32,
+    /// Keep the input surface (TetGen's `-Y`): no Steiner points on input edges or facets;
+    /// refine fails with `IDM_ERR_UNSUPPORTED` when a segment or facet triangle is not in the
+    /// Delaunay tetrahedralization without them (see the Rust `Options3::keep_surface`).
+    /// Default 0.
+    pub keep_surface: i32,
 }
 
 /// Quality figures of the current mesh (see `idm_mesher3d_stats`).
@@ -223,6 +228,7 @@ pub unsafe extern "C" fn idm_options3d_default(out: *mut idm_options3d) {
             .max_steiner
             .map_or(-1, |n| i64::try_from(n).unwrap_or(i64::MAX)),
         verbose: d.verbose.into(),
+        keep_surface: d.keep_surface.into(),
     };
     // SAFETY: checked non-null and aligned; validity is the caller's contract.
     unsafe { out.write(value) };
@@ -504,6 +510,7 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
             region_attributes: o.region_attributes != 0,
             max_steiner: u64::try_from(o.max_steiner).ok(),
             sizing: m.opts.sizing.take(),
+            keep_surface: o.keep_surface != 0,
             verbose: o.verbose != 0,
         };
         m.mesh = None;
@@ -1352,8 +1359,9 @@ mod tests {
         assert_eq!(o.region_attributes != 0, d.region_attributes);
         assert_eq!(o.max_steiner < 0, d.max_steiner.is_none());
         assert_eq!(o.verbose != 0, d.verbose);
+        assert_eq!(o.keep_surface != 0, d.keep_surface);
         // The documented values of the header.
-        assert_eq!((o.max_steiner, o.verbose), (-1, 0));
+        assert_eq!((o.max_steiner, o.verbose, o.keep_surface), (-1, 0, 0));
     }
 
     #[test]
@@ -1364,10 +1372,11 @@ mod tests {
         o.region_max_volume = 1;
         o.max_steiner = 100;
         o.verbose = 1;
+        o.keep_surface = 1;
         assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
         let h = &m.get_mut().opts;
         assert_eq!((h.radius_edge, h.max_volume), (Some(2.0), None));
-        assert!(h.region_attributes && h.region_max_volume && h.verbose);
+        assert!(h.region_attributes && h.region_max_volume && h.verbose && h.keep_surface);
         assert_eq!(h.max_steiner, Some(100));
         for field in ["radius_edge", "max_volume"] {
             let mut bad = o;

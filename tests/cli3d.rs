@@ -441,3 +441,40 @@ fn all_faces_neighbours_and_consistency_check_agree() {
     assert_eq!(faces.items.len(), (4 * m.tets.len() + hull) / 2);
     assert!(faces.markers.contains(&0) && faces.markers.contains(&3));
 }
+
+#[test]
+fn keep_surface_adds_points_only_inside_or_names_what_is_missing() {
+    // The cube's surface is in the Delaunay tetrahedralization of its corners: -Y keeps it
+    // (every boundary face has input corners only) and refinement adds interior points only.
+    let (d, m) = mesh_example("3d_cube.poly", "-pq1.414a0.01YQ", 1);
+    assert!(close(m.volume(), 1.0), "{}", m.volume());
+    let n = m.points.len();
+    assert!(
+        n > 8,
+        "the volume bound adds interior points ({n} vertices)"
+    );
+    for p in &m.points[8..] {
+        assert!(
+            p.iter().all(|&x| x > 0.0 && x < 1.0),
+            "Steiner point {p:?} is not strictly inside the cube"
+        );
+    }
+    let face = parse_face(&d.read("3d_cube.1.face"), "face", 1, n).unwrap();
+    assert_eq!(face.items.len(), 12, "two triangles per side");
+    for f in &face.items {
+        assert!(
+            f.iter().all(|&v| v < 8),
+            "boundary face {f:?} has a Steiner point"
+        );
+    }
+    // The cavity's square sides are cospherical with the outer box's corners: the Delaunay
+    // tetrahedralization does not contain them, and -Y cannot add points to recover them.
+    let d = TempDir::new("box_hole_Y");
+    d.example("3d_box_hole.poly");
+    let msg = fails(&idmesh(&d.0, &["-pqY", "3d_box_hole.poly"]));
+    assert!(
+        msg.contains("-Y") && msg.contains("facet") && msg.contains("without -Y"),
+        "{msg}"
+    );
+    assert!(!d.exists("3d_box_hole.1.ele"), "nothing written on failure");
+}

@@ -54,6 +54,14 @@ pub struct Options3 {
     pub max_steiner: Option<u64>,
     /// A user sizing test; see [`SizingFn3`]. Default: `None`.
     pub sizing: Option<SizingFn3>,
+    /// Keep the input surface (TetGen's `-Y`): no Steiner points on input edges or facets.
+    /// idmesh makes conforming Delaunay meshes and has no constrained recovery, so this works
+    /// when every input edge and every facet's Delaunay triangulation already appear in the
+    /// Delaunay tetrahedralization; otherwise meshing fails with [`Error::Unsupported`] naming
+    /// the first missing segment or facet triangle. Refinement then only adds interior
+    /// points: a tetrahedron whose circumcenter would encroach the surface stays as it is, so
+    /// the quality and volume bounds may not be met next to the boundary. Default: `false`.
+    pub keep_surface: bool,
     /// Print progress lines to standard error during long runs. Default: `false`.
     pub verbose: bool,
 }
@@ -67,6 +75,7 @@ impl fmt::Debug for Options3 {
             .field("region_attributes", &self.region_attributes)
             .field("max_steiner", &self.max_steiner)
             .field("sizing", &self.sizing.as_ref().map(|_| "<fn>"))
+            .field("keep_surface", &self.keep_surface)
             .field("verbose", &self.verbose)
             .finish()
     }

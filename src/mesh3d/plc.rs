@@ -287,6 +287,9 @@ impl Mesher<'_> {
         touched_segs.clear();
         touched_faces.clear();
         self.face_region.clear();
+        // Keeping the surface, a point may lie in a subface's diametral ball: only cavities
+        // that would remove a subface or subsegment from the mesh are refused.
+        let keep = self.opts.keep_surface;
         for &t in self.tets.cavity() {
             let vs = self.tets.verts(t);
             if vs.contains(&GHOST) {
@@ -309,7 +312,7 @@ impl Mesher<'_> {
                 }
                 if let Some(fid) = self.feat.subface(fv) {
                     let [a, b, c] = fv.map(|x| self.pts[x as usize]);
-                    if crossed || in_diametral_ball_tri(a, b, c, p) {
+                    if crossed || (!keep && in_diametral_ball_tri(a, b, c, p)) {
                         enc.push(Enc::Face(fv, fid));
                     }
                     if crossed
@@ -327,10 +330,26 @@ impl Mesher<'_> {
             for (i, j) in EDGES {
                 let (a, b) = (vs[i], vs[j]);
                 if self.feat.subseg(a, b).is_some() {
-                    if in_diametral_ball_seg3(self.pts[a as usize], self.pts[b as usize], p) {
+                    if !keep
+                        && in_diametral_ball_seg3(self.pts[a as usize], self.pts[b as usize], p)
+                    {
                         enc.push(Enc::Seg([a, b]));
                     }
                     touched_segs.push([a, b]);
+                }
+            }
+        }
+        if keep && provisional {
+            let mut star = Vec::new();
+            for &[a, b] in &touched_segs {
+                star.clear();
+                self.tets.star(a, &mut star);
+                let swallowed = star
+                    .iter()
+                    .filter(|&&t| self.tets.verts(t).contains(&b))
+                    .all(|&t| self.tets.in_cavity(t));
+                if swallowed {
+                    enc.push(Enc::Seg([a, b]));
                 }
             }
         }
@@ -524,6 +543,9 @@ impl Mesher<'_> {
         let Some(e) = self.feat.subseg(a, b) else {
             return Ok(());
         };
+        if self.opts.keep_surface {
+            return self.check_kept_subseg(a, b, e, force);
+        }
         if !force && !self.subseg_needs_split(a, b, e) {
             return Ok(());
         }
@@ -564,6 +586,34 @@ impl Mesher<'_> {
         }
         self.insert3d(m, false)
             .map_err(|_| Error::Internal(format!("segment split point {m} refused")))
+    }
+
+    /// `take_subseg` under [`Options3::keep_surface`]: nothing is split; a subsegment missing
+    /// from the 3D mesh or from a facet mesh is an error.
+    fn check_kept_subseg(&self, a: u32, b: u32, e: u32, force: bool) -> Result<(), Error> {
+        if force {
+            return Ok(());
+        }
+        let (pa, pb) = (self.pts[a as usize], self.pts[b as usize]);
+        if self.tets.find_edge(a, b).is_none() {
+            return Err(Error::Unsupported(format!(
+                "-Y (keep the surface): the input edge {pa:?}-{pb:?} is not an edge of the \
+                 Delaunay tetrahedralization; without Steiner points on it it cannot appear \
+                 (idmesh makes conforming Delaunay meshes and has no constrained recovery): \
+                 mesh without -Y"
+            )));
+        }
+        for &f in &self.feat.edges[e as usize].facets {
+            let fm = &self.fmesh[f as usize];
+            if fm.started() && !fm.has_edge(a, b) {
+                return Err(Error::Unsupported(format!(
+                    "-Y (keep the surface): the input edge {pa:?}-{pb:?} is not an edge of the \
+                     Delaunay triangulation of facet {f} (0-based); without Steiner points on \
+                     it it cannot appear (idmesh has no constrained recovery): mesh without -Y"
+                )));
+            }
+        }
+        Ok(())
     }
 
     /// Where to split subsegment `ab`: the midpoint, or, when exactly one end is an input vertex
@@ -609,6 +659,19 @@ impl Mesher<'_> {
     fn take_subface(&mut self, v: [u32; 3], fid: u32, force: bool) -> Result<(), Error> {
         if self.feat.subface(v) != Some(fid) {
             return Ok(());
+        }
+        if self.opts.keep_surface {
+            // A refused point's demand is dropped; a missing subface cannot be recovered.
+            if force || self.tets.find_face(v[0], v[1], v[2]).is_some() {
+                return Ok(());
+            }
+            let [a, b, c] = v.map(|x| self.pts[x as usize]);
+            return Err(Error::Unsupported(format!(
+                "-Y (keep the surface): the triangle {a:?}, {b:?}, {c:?} of facet {fid} \
+                 (0-based) is not a face of the Delaunay tetrahedralization; without Steiner \
+                 points on the facet it cannot appear (idmesh makes conforming Delaunay meshes \
+                 and has no constrained recovery): mesh without -Y"
+            )));
         }
         if !force && !self.subface_needs_split(v) {
             return Ok(());
@@ -773,6 +836,10 @@ impl Mesher<'_> {
             Err(enc) => {
                 self.pts.pop();
                 self.counts.tet_refused += 1;
+                if self.opts.keep_surface {
+                    // Nothing may be added to the surface: the tet stays as it is.
+                    return Ok(());
+                }
                 if enc.is_empty() {
                     // The circumcenter coincides with a vertex, or lies outside the box. Outside
                     // the box it is outside the domain, beyond a facet: the subface the way to
@@ -1289,10 +1356,11 @@ struct Sharp {
     /// both spans the narrow wedge between them, however far from the apex (Triangle's rule
     /// for a skinny triangle whose short edge faces a small input angle).
     seg_pairs: crate::hash::FastSet<(u32, u32)>,
-    /// Per facet: protection zones of the sharp edges and vertices on it (segment ends and
-    /// squared radius; a vertex is a zero-length segment). Tets with a vertex on the facet
-    /// inside a zone are exempt: next to a sharp edge the facets' refinement feeds itself
-    /// (each split near one facet encroaches the other), ever closer to the edge.
+    /// Per facet: protection zones of the sharp edges on it. Tets with a vertex on the facet
+    /// inside a zone are exempt: next to a sharp edge the two facets' refinement feeds itself
+    /// (each split near one facet encroaches the other), ever closer to the edge. (Sharp
+    /// vertices need no zone: the tets touching them and those crossing the wedge between
+    /// their edges are exempt.)
     zones: Vec<Vec<Zone>>,
 }
 
@@ -1304,8 +1372,7 @@ struct Zone {
     r2: f64,
 }
 
-/// Radius of the protection zone of a sharp edge or vertex, relative to the length of the
-/// edge (or of the shortest input edge at the vertex).
+/// Radius of the protection zone of a sharp edge, relative to the edge's length.
 const ZONE_FRACTION: f64 = 0.25;
 
 impl Sharp {
@@ -1405,23 +1472,6 @@ impl Sharp {
                     b: p(b).to_array(),
                     r2: r * r,
                 });
-            }
-        }
-        for &v in &sharp.vertices {
-            let shortest = feat.seg_adj.get(&v).map_or(0.0, |l| {
-                l.iter()
-                    .map(|&w| (p(w) - p(v)).length())
-                    .fold(f64::INFINITY, f64::min)
-            });
-            let r = ZONE_FRACTION * shortest;
-            if r.is_finite() && r > 0.0 {
-                for &f in feat.vert_facets.get(&v).into_iter().flatten() {
-                    sharp.zones[f as usize].push(Zone {
-                        a: p(v).to_array(),
-                        b: p(v).to_array(),
-                        r2: r * r,
-                    });
-                }
             }
         }
         sharp

@@ -398,6 +398,26 @@ static void test_cube(void) {
            v.nv, v.nt, v.nf, v.ne, max_re, v.stats.min_dihedral, v.stats.max_dihedral);
   }
 
+  /* Keeping the surface (TetGen's -Y): Steiner points only strictly inside the cube. */
+  CHECK(o.keep_surface == 0, "keep_surface default");
+  o.keep_surface = 1;
+  CHECK(idm_mesher3d_set_options(m, &o) == IDM_OK, "set_options keep_surface");
+  CHECK(idm_mesher3d_refine(m) == IDM_OK, "refine keep_surface: %s", idm_last_error());
+  CHECK(idm_mesher3d_validate(m) == IDM_OK, "validate keep_surface");
+  if (read_view(m, &v)) {
+    size_t f, k;
+    check_mesh(&v, 1.0, 1, "cube keep_surface");
+    CHECK(v.nv > CUBE_POINTS, "no interior point with a volume bound (%zu vertices)", v.nv);
+    CHECK(v.nf == 12, "%zu boundary faces, expected the 12 input triangles", v.nf);
+    for (f = 0; f < v.nf; f++)
+      for (k = 0; k < 3; k++)
+        CHECK(v.face[3 * f + k] < CUBE_POINTS, "face %zu has a Steiner point", f);
+    for (f = CUBE_POINTS; f < v.nv; f++)
+      for (k = 0; k < 3; k++)
+        CHECK(v.xyz[3 * f + k] > 0 && v.xyz[3 * f + k] < 1, "vertex %zu not inside", f);
+  }
+  o.keep_surface = 0;
+
   /* The Steiner cap: IDM_INCOMPLETE with a readable, valid mesh. */
   o.radius_edge = 1.5;
   o.max_volume = 1e-4;

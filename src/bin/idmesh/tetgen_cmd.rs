@@ -34,6 +34,11 @@ Switches are letters that may be grouped, e.g. -pq1.414a0.1V:
               volume bounds of the input
   -A          write each tetrahedron's regional attribute to the .ele file
   -S[N]       at most N Steiner points (-S alone: no limit); a warning is printed if reached
+  -Y          keep the input surface: no Steiner points on segments or facets. Works when the
+              surface (each facet's Delaunay triangulation) is in the Delaunay
+              tetrahedralization; otherwise an error names the missing edge or triangle
+              (idmesh has no constrained recovery). Tets whose circumcenter would encroach
+              the surface are left as they are
   -z          number output items from 0
   -f          write every face to the .face file, not only the boundary and facet faces
   -e          write the subsegments to an .edge file
@@ -49,7 +54,7 @@ Switches are letters that may be grouped, e.g. -pq1.414a0.1V:
               facets and never drops unused vertices
 Numbers after q take digits and dots; after a and S also exponents, exactly as in TetGen
 (so -a0.1e reads the volume 0.1e: put e first, -pea0.1).
-Not supported: -Y (no boundary Steiner points), -c, -r, -i, -m, -T, -O, -o2 and the viewer
+Not supported: -c, -r, -i, -m, -T, -O, -o2 and the viewer
 outputs; they are errors, never ignored.
 ";
 
@@ -191,6 +196,7 @@ fn options(sw: &TetSwitches) -> Options3 {
         region_max_volume: sw.region_volume,
         region_attributes: sw.region_attributes,
         max_steiner: sw.max_steiner,
+        keep_surface: sw.keep_surface,
         verbose: sw.verbose && !sw.quiet,
         ..Options3::default()
     }

@@ -23,6 +23,8 @@ pub struct TetSwitches {
     pub region_attributes: bool,
     /// `S<n>`: at most `n` Steiner points (`S` alone: no limit, as in TetGen).
     pub max_steiner: Option<u64>,
+    /// `Y`: keep the input surface (no Steiner points on segments or facets).
+    pub keep_surface: bool,
     /// `z`: number output items from 0.
     pub zero_based: bool,
     /// `f`: write every face, not only the boundary ones, to the `.face` file.
@@ -68,7 +70,6 @@ pub enum Parsed {
 /// TetGen switches that idmesh recognises but does not implement, with what they do.
 fn unsupported(c: char) -> Option<&'static str> {
     Some(match c {
-        'Y' => "no Steiner points on the boundary; not supported yet",
         'c' => "retaining the convex hull of the PLC",
         'r' => "refining a previous mesh",
         'i' => "inserting additional points",
@@ -174,6 +175,7 @@ fn parse_group(arg: &str, sw: &mut TetSwitches) -> Result<(), String> {
                 }
             }
             'A' => sw.region_attributes = true,
+            'Y' => sw.keep_surface = true,
             'z' => sw.zero_based = true,
             'f' => sw.all_faces = true,
             'e' => sw.edges = true,
@@ -348,8 +350,8 @@ mod tests {
 
     #[test]
     fn unsupported_and_unknown_switches_are_errors_naming_them() {
-        let e = run(&["-pY", "x"]).unwrap_err();
-        assert!(e.contains("-Y") && e.contains("not supported"), "{e}");
+        let (s, _) = run(&["-pY", "x"]).unwrap();
+        assert!(s.keep_surface && s.plc);
         let e = run(&["-pc", "x"]).unwrap_err();
         assert!(e.contains("-c") && e.contains("convex hull"), "{e}");
         let e = run(&["-p1.5", "x"]).unwrap_err();

@@ -197,7 +197,6 @@ fn bad_switches_exit_1_with_a_message_naming_them_and_write_nothing() {
     d.example("3d_cube.poly");
     for (args, needle) in [
         (vec!["-pqx", "3d_cube.poly"], "-x"),
-        (vec!["-pY", "3d_cube.poly"], "-Y"),
         (vec!["-pc", "3d_cube.poly"], "convex hull"),
         (vec!["-pr", "3d_cube.poly"], "-r"),
         (vec!["-pa0", "3d_cube.poly"], "greater than zero"),

@@ -172,7 +172,21 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
             m.run()?;
         }
     }
-    m.split_inner_slivers()?;
+    // A rounding sliver lying in a facet with the domain on both sides (an internal facet)
+    // cannot be left out of the output like those touching the outside: split its subface
+    // (the facet point at its circumcentre removes it) and refine again.
+    if !m.opts.keep_surface {
+        for _round in 0..8 {
+            let faces = m.interior_flat_slivers();
+            if faces.is_empty() || !m.complete {
+                break;
+            }
+            for (f, fid) in faces {
+                m.face_q.push_back((f, fid, true));
+            }
+            m.run()?;
+        }
+    }
     m.output(plc)
 }
 
@@ -1077,55 +1091,12 @@ impl Mesher<'_> {
         }
     }
 
-    /// Rounding slivers inside the domain that the output cannot leave out (see
-    /// [`Mesher::rounding_slivers_on_boundary`]; typically on an internal facet, with the
-    /// domain on both sides): four vertices of one facet, exactly cocircular in the facet's
-    /// plane, whose rounded copies the 3D mesh joins into a flat tet. Each is removed by
-    /// splitting one of its faces that is a subface: the subface's circumcentre (or the
-    /// subsegment it waits for) is in the facet, inside the sliver's circumsphere. The new
-    /// points may make new such slivers; the rounds are bounded.
-    fn split_inner_slivers(&mut self) -> Result<(), Error> {
-        for _round in 0..32 {
-            if !self.complete {
-                return Ok(());
-            }
-            let dropped = self.rounding_slivers_on_boundary();
-            let mut queued = false;
-            for t in 0..self.tets.num_slots() as u32 {
-                if !self.tets.alive(t)
-                    || self.tets.is_ghost(t)
-                    || self.region_of(t) == OUTSIDE
-                    || dropped.contains(&t)
-                {
-                    continue;
-                }
-                let vs = self.tets.verts(t);
-                if !self.feat.in_one_facet(vs) {
-                    continue;
-                }
-                if let Some((fv, fid)) = (0..4).find_map(|f| {
-                    self.feat
-                        .subface(face_of(vs, f))
-                        .map(|g| (face_of(vs, f), g))
-                }) {
-                    self.face_q.push_back((fv, fid, true));
-                    queued = true;
-                }
-            }
-            if !queued {
-                return Ok(());
-            }
-            self.run()?;
-        }
-        Ok(())
-    }
-
     /// Rounding slivers at the domain's boundary, which the output leaves out: tets inside
     /// the domain whose four vertices lie on one facet (flat in exact terms; Steiner points
     /// rounded off a slanted facet make them) and that touch the outside, directly or through
     /// other such slivers. Their other faces, which lie in the same facet, become the
     /// boundary. Slivers elsewhere (on internal facets: dropping them would tear the mesh
-    /// apart) are split away instead, see [`Mesher::split_inner_slivers`].
+    /// apart) are split away after refinement (see [`Mesher::interior_flat_slivers`]).
     fn rounding_slivers_on_boundary(&self) -> crate::hash::FastSet<u32> {
         let mut cand: Vec<u32> = (0..self.tets.num_slots() as u32)
             .filter(|&t| {
@@ -1154,6 +1125,29 @@ impl Mesher<'_> {
                 return dropped;
             }
         }
+    }
+
+    /// A subface of each rounding sliver (all four vertices on one facet plane) whose four
+    /// neighbours are all in the domain.
+    fn interior_flat_slivers(&self) -> Vec<([u32; 3], u32)> {
+        let inside = |t: u32| !self.tets.is_ghost(t) && self.region_of(t) < UNKNOWN;
+        let mut out = Vec::new();
+        for t in 0..self.tets.num_slots() as u32 {
+            if !self.tets.alive(t) || !inside(t) {
+                continue;
+            }
+            let vs = self.tets.verts(t);
+            if !self.feat.in_one_facet(vs) || !(0..4).all(|f| inside(self.tets.neighbor(t, f).0)) {
+                continue;
+            }
+            if let Some((fv, fid)) = (0..4).find_map(|f| {
+                let fv = face_of(vs, f);
+                self.feat.subface(fv).map(|fid| (fv, fid))
+            }) {
+                out.push((fv, fid));
+            }
+        }
+        out
     }
 
     fn output(&self, plc: &Plc) -> Result<TetMesh, Error> {

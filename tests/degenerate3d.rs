@@ -670,7 +670,6 @@ fn inset_stack_plain() {
 }
 
 #[test]
-#[ignore = "idmesh bug C: complete mesh with a tet of input vertices only ([11, 0, 8, 4]) of radius-edge 3.81 > 2; every input angle is 90, 180 or 270 degrees"]
 fn bug_c_inset_stack_meets_radius_edge_2() {
     let (plc, spec) = inset_stack();
     let o = Options3 {

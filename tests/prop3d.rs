@@ -661,7 +661,6 @@ property!(
     0
 );
 property!(
-    #[ignore = "idmesh bug C: complete mesh with radius-edge above the bound (5.39 > 2 on a tet of input vertices) where the lower box top is a ring facet around an inset upper box; angles are all 90/180/270 degrees; reproducer: degenerate3d bug_c_inset_stack_meets_radius_edge_2 (3.81 > 2)"]
     inset_aligned_q2,
     stack_raw(false, true),
     |raw| stacked(&raw),
@@ -669,7 +668,6 @@ property!(
     1
 );
 property!(
-    #[ignore = "idmesh bug C: complete mesh with radius-edge above the bound (1.44 > 1.414) where the lower box top is a ring facet around an inset upper box; angles are all 90/180/270 degrees, radius_edge 1.414 + max_volume; reproducer of the 2.0 case: degenerate3d bug_c_*"]
     inset_aligned_q1414_vol,
     stack_raw(false, true),
     |raw| stacked(&raw),
@@ -684,7 +682,6 @@ property!(
     0
 );
 property!(
-    #[ignore = "idmesh bug C: complete mesh with radius-edge above the bound (5.39 > 2 on a tet of input vertices) where the lower box top is a ring facet around an inset upper box; angles are all 90/180/270 degrees; reproducer: degenerate3d bug_c_inset_stack_meets_radius_edge_2 (3.81 > 2)"]
     inset_rotated_q2,
     stack_raw(true, true),
     |raw| stacked(&raw),
@@ -692,7 +689,6 @@ property!(
     1
 );
 property!(
-    #[ignore = "idmesh bug C: complete mesh with radius-edge above the bound (1.66 > 1.414) where the lower box top is a ring facet around an inset upper box (rotated); the inward direction Sharp::find takes for the ring facet crosses its hole"]
     inset_rotated_q1414_vol,
     stack_raw(true, true),
     |raw| stacked(&raw),

@@ -86,7 +86,7 @@ pub(crate) struct Outline {
 
 impl Outline {
     /// Even–odd point-in-polygon, exact for the given point (crossing parity of a rightward ray).
-    fn contains(&self, q: [f64; 2]) -> bool {
+    pub(crate) fn contains(&self, q: [f64; 2]) -> bool {
         let mut inside = false;
         for lp in &self.loops {
             let n = lp.len();

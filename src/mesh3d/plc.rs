@@ -1095,7 +1095,8 @@ impl Mesher<'_> {
     /// the domain whose four vertices lie on one facet (flat in exact terms; Steiner points
     /// rounded off a slanted facet make them) and that touch the outside, directly or through
     /// other such slivers. Their other faces, which lie in the same facet, become the
-    /// boundary. Slivers in internal facets stay (dropping them would tear the mesh apart).
+    /// boundary. Slivers elsewhere (on internal facets: dropping them would tear the mesh
+    /// apart) are split away after refinement (see [`Mesher::interior_flat_slivers`]).
     fn rounding_slivers_on_boundary(&self) -> crate::hash::FastSet<u32> {
         let mut cand: Vec<u32> = (0..self.tets.num_slots() as u32)
             .filter(|&t| {
@@ -1311,6 +1312,24 @@ fn face_of(v: [u32; 4], f: usize) -> [u32; 3] {
     }
 }
 
+/// Whether `p` lies exactly on the line through `a` and `b` (2D).
+fn on_line2(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> bool {
+    crate::predicates::orient2d(a, b, p) == 0.0
+}
+
+/// The distance from `q` to the segment `s t` (2D, floating point).
+fn dist_point_segment2(q: [f64; 2], s: [f64; 2], t: [f64; 2]) -> f64 {
+    let (dx, dy) = (t[0] - s[0], t[1] - s[1]);
+    let l2 = dx * dx + dy * dy;
+    let u = if l2 > 0.0 {
+        (((q[0] - s[0]) * dx + (q[1] - s[1]) * dy) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let (x, y) = (s[0] + u * dx - q[0], s[1] + u * dy - q[1]);
+    (x * x + y * y).sqrt()
+}
+
 fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
     super::features::dominant_axis(a, b, c).is_none()
 }
@@ -1383,31 +1402,56 @@ impl Sharp {
                 }
             }
         }
-        // The direction into facet f from edge ab: towards the facet vertex farthest from the
-        // edge's line (right for convex facets; a conservative guess otherwise).
-        let inward = |f: u32, a: u32, b: u32| -> Option<DVec3> {
+        // The directions into facet f from edge ab: the in-plane normals to the edge (n × e)
+        // on whose side the facet lies next to the edge's midpoint (both for an edge inside
+        // the facet, none for a degenerate one). Taking, say, the direction towards the
+        // farthest facet vertex instead would cross a hole of a ring facet.
+        let inward = |f: u32, a: u32, b: u32| -> Vec<DVec3> {
+            let fi = &feat.facets[f as usize];
+            let [u, v, w] = fi.plane.map(p);
+            let n = (v - u).cross(w - u);
             let (pa, pb) = (p(a), p(b));
-            let e = (pb - pa).normalize();
-            feat.facets[f as usize]
-                .vertices
-                .iter()
-                .map(|&c| {
-                    let d = p(c) - pa;
-                    d - e * d.dot(e)
+            let e = pb - pa;
+            let d = n.cross(e).normalize_or_zero();
+            if d == DVec3::ZERO {
+                return Vec::new();
+            }
+            let mid = 0.5 * (pa + pb);
+            // Step off the midpoint by less than its distance to any other outline edge, so
+            // the probes see only the facet's side of this edge.
+            let q = super::features::proj(mid.to_array(), fi.axis);
+            let (qa, qb) = (
+                super::features::proj(pa.to_array(), fi.axis),
+                super::features::proj(pb.to_array(), fi.axis),
+            );
+            let mut reach = 0.25 * e.length();
+            for lp in &fi.outline.loops {
+                for i in 0..lp.len() {
+                    let (s, t) = (lp[i], lp[(i + 1) % lp.len()]);
+                    if on_line2(s, qa, qb) && on_line2(t, qa, qb) {
+                        continue; // the edge itself (or a collinear piece of its loop edge)
+                    }
+                    reach = reach.min(dist_point_segment2(q, s, t));
+                }
+            }
+            // (The projection does not lengthen the step.)
+            let step = 0.5 * reach;
+            [d, -d]
+                .into_iter()
+                .filter(|&s| {
+                    let probe = (mid + s * step).to_array();
+                    fi.outline.contains(super::features::proj(probe, fi.axis))
                 })
-                .max_by(|x, y| x.length_squared().total_cmp(&y.length_squared()))
-                .filter(|d| d.length_squared() > 0.0)
-                .map(|d| d.normalize())
+                .collect()
         };
         for (ei, e) in feat.edges.iter().enumerate() {
             let [a, b] = e.ends;
             for (i, &f1) in e.facets.iter().enumerate() {
                 for &f2 in &e.facets[i + 1..] {
-                    if let (Some(d1), Some(d2)) = (inward(f1, a, b), inward(f2, a, b)) {
-                        if d1.dot(d2) > small {
-                            sharp.edges.insert(ei as u32);
-                            sharp.facet_pairs.insert((f1.min(f2), f1.max(f2)));
-                        }
+                    let (d1, d2) = (inward(f1, a, b), inward(f2, a, b));
+                    if d1.iter().any(|x| d2.iter().any(|y| x.dot(*y) > small)) {
+                        sharp.edges.insert(ei as u32);
+                        sharp.facet_pairs.insert((f1.min(f2), f1.max(f2)));
                     }
                 }
             }

@@ -702,13 +702,20 @@ impl Mesher<'_> {
             // A circumcentre beyond a subsegment (outside the facet) waits for that split.
             let feat = &self.feat;
             let is_sub = |a: u32, b: u32| feat.subseg(a, b).is_some();
-            if let Err(FacetInsertError::Encroaches(segs)) =
+            if let Err(FacetInsertError::Encroaches(mut segs)) =
                 self.fmesh[fid as usize].check_reach(v, cc, &self.pts, &is_sub)
             {
+                // Only subsegments whose diametral ball holds the circumcentre: splitting
+                // them shrinks those balls until it is out. (A subsegment that merely lies
+                // between the face and its circumcentre would be split forever without
+                // the face changing, as next to small input angles.)
+                let pts = &self.pts;
+                segs.retain(|s| in_diametral_ball_seg3(pts[s[0] as usize], pts[s[1] as usize], cc));
                 if self.defer_to_segments(&segs, v, fid, force) {
                     return Ok(());
                 }
-                // Every such subsegment is below the size floor: split inside the face.
+                // None, or every such subsegment is below the size floor: split inside the
+                // face.
                 cc = centroid;
             }
         }
@@ -722,6 +729,12 @@ impl Mesher<'_> {
                 Err(FacetInsertError::Duplicate(_) | FacetInsertError::Lost) if !tried_centroid => {
                     tried_centroid = true;
                     self.pts[m as usize] = centroid;
+                }
+                // Even the centroid rounds onto a vertex (a face at the precision limit): a
+                // quality demand on a present face is dropped.
+                Err(FacetInsertError::Duplicate(_)) if force => {
+                    self.pts.pop();
+                    return Ok(());
                 }
                 Err(FacetInsertError::Encroaches(segs)) => {
                     if self.defer_to_segments(&segs, v, fid, force) {

@@ -716,8 +716,8 @@ impl FacetMesh {
     ///
     /// A split point lies on its subsegment up to rounding, so the split needs no orientation
     /// test; a Bowyer–Watson cavity built from the rounded point can be non-star-shaped next to
-    /// needle triangles (angles of a few hundredths of a degree), while the flips below only
-    /// ask the exact 3D in-circle test. In exact coplanar arithmetic both give the same mesh:
+    /// needle triangles (angles of a few hundredths of a degree). The flips below ask the exact
+    /// 3D in-circle test (and convexity). In exact coplanar arithmetic both give the same mesh:
     /// the triangles flipped away are exactly those whose circumcircle holds the point.
     fn split_edge(
         &mut self,
@@ -805,9 +805,10 @@ impl FacetMesh {
     /// circle of `pv`'s triangle. As in the Bowyer–Watson cavity of a Steiner point, only
     /// triangles inside the facet are flipped away (the outside is scaffolding). A subsegment
     /// flipped away is reported in `change.encroached`, as are the subsegments of the final
-    /// link whose diametral ball holds the point. Orientation is not asked: for a point in
-    /// the circle and across the edge the quadrilateral is convex in exact arithmetic, and the
-    /// rounded projection must not veto what the 3D mesh will do.
+    /// link whose diametral ball holds the point. A flip also needs the quadrilateral to be
+    /// convex in projection (it is in exact coplanar arithmetic for a point in the circle and
+    /// across the edge): flipping a rounding-concave one would fold the mesh over itself, and a
+    /// later point located in the fold would leave a triangle it covers in place.
     #[allow(clippy::too_many_arguments)]
     fn flip_from_split(
         &mut self,
@@ -848,6 +849,10 @@ impl FacetMesh {
                 continue;
             }
             if !self.conflict(n, p, pts) {
+                continue;
+            }
+            let p2 = self.proj(p);
+            if self.orient(x, q, p2, pts) <= 0.0 || self.orient(q, y, p2, pts) <= 0.0 {
                 continue;
             }
             if is_subseg(x, y) {

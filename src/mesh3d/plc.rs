@@ -754,6 +754,12 @@ impl Mesher<'_> {
                     tried_centroid = true;
                     self.pts[m as usize] = centroid;
                 }
+                Err(FacetInsertError::Duplicate(d)) if v.contains(&d) => {
+                    return Err(Error::Internal(format!(
+                        "subface {v:?} of facet {fid} is too small to split (precision \
+                         exhausted: its centroid rounds onto its corner {d})"
+                    )))
+                }
                 Err(e) => {
                     return Err(Error::Internal(format!(
                         "circumcenter of subface {v:?} in facet {fid}: {e:?}"

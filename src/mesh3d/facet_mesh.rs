@@ -861,31 +861,15 @@ impl FacetMesh {
                     change.encroached.push(s);
                 }
             }
-            let a_ = self.tn[t as usize][next(k)];
-            let b_ = self.tn[t as usize][prev(k)];
-            let c_ = self.tn[n as usize][next(j)];
-            let d_ = self.tn[n as usize][prev(j)];
-            self.tv[t as usize] = [pv, x, q];
-            self.tv[n as usize] = [pv, q, y];
-            self.link(3 * t, c_);
-            self.link(3 * t + 2, b_);
-            self.link(3 * n, d_);
-            self.link(3 * n + 1, a_);
-            self.link(3 * t + 1, 3 * n + 2);
             if !fresh.contains(&n) {
                 // `n` was an old inside triangle: it is gone.
                 change.removed.push([q, y, x]);
                 fresh.push(n);
             }
+            self.flip_edge(t, k);
             for tt in [t, n] {
                 // Both triangles were inside, so their union is: no outline test needed.
-                let vv = self.tv[tt as usize];
-                self.inside[tt as usize] = !on_one_edge(vv);
-                for &u in &vv {
-                    if !is_bound(u) {
-                        self.vtri.insert(u, tt);
-                    }
-                }
+                self.inside[tt as usize] = !on_one_edge(self.tv[tt as usize]);
                 stack.push(tt);
             }
         }
@@ -908,6 +892,35 @@ impl FacetMesh {
                 let s = if x < y { [x, y] } else { [y, x] };
                 if !change.encroached.contains(&s) {
                     change.encroached.push(s);
+                }
+            }
+        }
+    }
+
+    /// Flips the edge opposite corner `k` of triangle `t`: `t = (c, x, y)` and its neighbour
+    /// `(q, y, x)` become `(c, x, q)` (in `t`) and `(c, q, y)` (in the neighbour), relinked,
+    /// with the star pointers of their corners updated. The caller sets `inside`.
+    fn flip_edge(&mut self, t: u32, k: usize) {
+        let v = self.tv[t as usize];
+        let (c, x, y) = (v[k], v[next(k)], v[prev(k)]);
+        let h = self.tn[t as usize][k];
+        let (n, j) = (h / 3, (h % 3) as usize);
+        let q = self.tv[n as usize][j];
+        let a_ = self.tn[t as usize][next(k)];
+        let b_ = self.tn[t as usize][prev(k)];
+        let c_ = self.tn[n as usize][next(j)];
+        let d_ = self.tn[n as usize][prev(j)];
+        self.tv[t as usize] = [c, x, q];
+        self.tv[n as usize] = [c, q, y];
+        self.link(3 * t, c_);
+        self.link(3 * t + 2, b_);
+        self.link(3 * n, d_);
+        self.link(3 * n + 1, a_);
+        self.link(3 * t + 1, 3 * n + 2);
+        for tt in [t, n] {
+            for u in self.tv[tt as usize] {
+                if !is_bound(u) {
+                    self.vtri.insert(u, tt);
                 }
             }
         }
@@ -955,30 +968,15 @@ impl FacetMesh {
             if self.orient(x, q, p2, pts) <= 0.0 || self.orient(q, y, p2, pts) <= 0.0 {
                 continue;
             }
-            let a_ = self.tn[t as usize][next(k)];
-            let b_ = self.tn[t as usize][prev(k)];
-            let c_ = self.tn[n as usize][next(j)];
-            let d_ = self.tn[n as usize][prev(j)];
             for tt in [t, n] {
                 if self.inside[tt as usize] && !fresh.contains(&tt) {
                     change.removed.push(self.tv[tt as usize]);
                 }
             }
-            self.tv[t as usize] = [pv, x, q];
-            self.tv[n as usize] = [pv, q, y];
-            self.link(3 * t, c_);
-            self.link(3 * t + 2, b_);
-            self.link(3 * n, d_);
-            self.link(3 * n + 1, a_);
-            self.link(3 * t + 1, 3 * n + 2);
+            self.flip_edge(t, k);
             for tt in [t, n] {
                 let vv = self.tv[tt as usize];
                 self.inside[tt as usize] = !on_one_edge(vv) && self.classify(vv, pts);
-                for &u in &vv {
-                    if !is_bound(u) {
-                        self.vtri.insert(u, tt);
-                    }
-                }
                 if !fresh.contains(&tt) {
                     fresh.push(tt);
                 }

@@ -1336,19 +1336,6 @@ fn on_line2(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> bool {
     crate::predicates::orient2d(a, b, p) == 0.0
 }
 
-/// The distance from `q` to the segment `s t` (2D, floating point).
-fn dist_point_segment2(q: [f64; 2], s: [f64; 2], t: [f64; 2]) -> f64 {
-    let (dx, dy) = (t[0] - s[0], t[1] - s[1]);
-    let l2 = dx * dx + dy * dy;
-    let u = if l2 > 0.0 {
-        (((q[0] - s[0]) * dx + (q[1] - s[1]) * dy) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let (x, y) = (s[0] + u * dx - q[0], s[1] + u * dy - q[1]);
-    (x * x + y * y).sqrt()
-}
-
 fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
     super::features::dominant_axis(a, b, c).is_none()
 }
@@ -1450,7 +1437,9 @@ impl Sharp {
                     if on_line2(s, qa, qb) && on_line2(t, qa, qb) {
                         continue; // the edge itself (or a collinear piece of its loop edge)
                     }
-                    reach = reach.min(dist_point_segment2(q, s, t));
+                    let lift = |u: [f64; 2]| [u[0], u[1], 0.0];
+                    let d2 = crate::geometry::dist2_point_segment3(lift(q), lift(s), lift(t));
+                    reach = reach.min(d2.sqrt());
                 }
             }
             // (The projection does not lengthen the step.)

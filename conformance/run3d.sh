@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # 3D conformance check: meshes every case of conformance/cases3d.txt with
 # `idmesh tetgen` and judges the output with the shared verifier
-# (../shared/tools/verify3d.py, relative to the repository root).
+# (../shared/tools/verify3d.py, relative to the repository root), which must find the mesh
+# exactly Delaunay, except with -Y (the input surface kept: not Delaunay next to it).
 #
 # Usage: conformance/run3d.sh            (from any directory)
 # Environment:
@@ -61,6 +62,28 @@ count_of() {
     awk '{ sub(/#.*/, "") } NF { print $1; exit }' "$1" 2>/dev/null
 }
 
+# With -Y: whether every face of FACE uses input vertices only (numbered below the input's
+# point count: input points come first, from the first index of the .node beside FACE).
+surface_kept() {
+    python3 - "$1" "$2" <<'PY'
+import sys
+def rows(path):
+    out = []
+    for line in open(path, errors="replace"):
+        line = line.split("#", 1)[0].split()
+        if line:
+            out.append(line)
+    return out
+inp, face = sys.argv[1], sys.argv[2]
+r = rows(inp)
+n = int(r[1][0]) if r[0][0].upper().endswith("OFF") else int(r[0][0])
+f = rows(face)
+items = f[1:1 + int(f[0][0])]
+base = int(rows(face[: -len("face")] + "node")[1][0])
+sys.exit(0 if all(int(x) - base < n for it in items for x in it[1:4]) else 1)
+PY
+}
+
 passed=0
 failed=0
 missing=0
@@ -104,8 +127,16 @@ while IFS= read -r line || [ -n "$line" ]; do
         continue
     fi
     vinput="$dir/$file"
+    # -Y keeps the input surface: the mesh is not Delaunay next to it.
+    delaunay=(--require-delaunay)
+    case "$switches" in *Y*) delaunay=() ;; esac
     if python3 "$verifier" "$vinput" "$dir/$stem.1.node" "$dir/$stem.1.ele" "$dir/$stem.1.face" \
-        --require-delaunay "${extra[@]}" >"$dir/verify.out" 2>&1; then
+        "${delaunay[@]}" "${extra[@]}" >"$dir/verify.out" 2>&1; then
+        if [ "${#delaunay[@]}" -eq 0 ] && ! surface_kept "$dir/$file" "$dir/$stem.1.face"; then
+            echo "FAIL $label $result: a boundary face has a Steiner vertex (-Y)"
+            failed=$((failed + 1))
+            continue
+        fi
         echo "PASS $label $result"
         passed=$((passed + 1))
     else

@@ -205,9 +205,11 @@ typedef struct idm_options3d {
   int32_t verbose;
   /**
    * Keep the input surface (TetGen's `-Y`): no Steiner points on input edges or facets;
-   * refine fails with `IDM_ERR_UNSUPPORTED` when a segment or facet triangle is not in the
-   * Delaunay tetrahedralization without them (see the Rust `Options3::keep_surface`).
-   * Default 0.
+   * the boundary faces are the input's triangles (a polygon facet is triangulated on its
+   * own vertices). Interior Steiner points may be added where the surface needs them; the
+   * tetrahedra next to the surface are then not Delaunay, and quality and volume bounds
+   * are not met where meeting them would need a point on or next to the surface (see the
+   * Rust `Options3::keep_surface`). Default 0.
    */
   int32_t keep_surface;
 } idm_options3d;

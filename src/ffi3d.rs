@@ -45,9 +45,11 @@ pub struct idm_options3d {
     /// Print progress lines to standard error during long runs. Default 0.
     pub verbose: i32,
     /// Keep the input surface (TetGen's `-Y`): no Steiner points on input edges or facets;
-    /// refine fails with `IDM_ERR_UNSUPPORTED` when a segment or facet triangle is not in the
-    /// Delaunay tetrahedralization without them (see the Rust `Options3::keep_surface`).
-    /// Default 0.
+    /// the boundary faces are the input's triangles (a polygon facet is triangulated on its
+    /// own vertices). Interior Steiner points may be added where the surface needs them; the
+    /// tetrahedra next to the surface are then not Delaunay, and quality and volume bounds
+    /// are not met where meeting them would need a point on or next to the surface (see the
+    /// Rust `Options3::keep_surface`). Default 0.
     pub keep_surface: i32,
 }
 
@@ -1069,6 +1071,7 @@ mod tests {
             edge_markers: vec![9, 9, 9, 8, 8, 8],
             complete: false,
             steiner_points: 3,
+            surface_kept: false,
         }
     }
 

@@ -121,6 +121,22 @@ pub fn tet_volume(c: [[f64; 3]; 4]) -> f64 {
     (v3(c[1]) - a).cross(v3(c[2]) - a).dot(v3(c[3]) - a) / 6.0
 }
 
+/// The shape of a tetrahedron in `[0, 1]`: `6√2 |V| / l³` with `l` the root mean square of
+/// its six edge lengths; 1 for the regular tetrahedron, near 0 for flat ones of any kind.
+pub fn tet_shape(c: [[f64; 3]; 4]) -> f64 {
+    let mut l2 = 0.0;
+    for i in 0..4 {
+        for j in i + 1..4 {
+            l2 += dist2_3(c[i], c[j]);
+        }
+    }
+    let l = (l2 / 6.0).sqrt();
+    if l == 0.0 {
+        return 0.0;
+    }
+    6.0 * std::f64::consts::SQRT_2 * tet_volume(c).abs() / (l * l * l)
+}
+
 /// Circumcenter of tetrahedron `abcd`, computed relative to `a` for accuracy; `None` when the
 /// four points are (numerically) coplanar.
 pub fn tet_circumcenter(c: [[f64; 3]; 4]) -> Option<[f64; 3]> {

@@ -28,6 +28,7 @@ mod hash;
 pub mod input;
 pub mod input3d;
 pub mod io;
+mod lp;
 pub mod mesh2d;
 pub mod mesh3d;
 pub mod predicates;

@@ -176,6 +176,36 @@ pub fn in_diametral_ball_seg3(a: [f64; 3], b: [f64; 3], p: [f64; 3]) -> bool {
     crate::exact::dot_sign_3d(a, b, p) < 0
 }
 
+/// `true` when `p` lies strictly inside the *lens* of triangle `abc` of relative height `h`:
+/// the intersection of the two balls whose spheres pass through `a, b, c` and through the
+/// points at distance `h·r` above and below the circumcentre (`r` the circumradius) along the
+/// triangle's normal. For `h < 1` it is the part of the diametral ball within about `h·r` of
+/// the triangle's plane. The two apexes are constructed in floating point; the sphere tests
+/// are exact, and each sphere passes exactly through `a, b, c`. `false` for a degenerate
+/// triangle.
+pub fn in_lens_tri(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3], h: f64) -> bool {
+    let Some(o) = crate::geometry::tri_circumcenter3(a, b, c) else {
+        return false;
+    };
+    let (u, w) = (sub3(b, a), sub3(c, a));
+    let n = [
+        u[1] * w[2] - u[2] * w[1],
+        u[2] * w[0] - u[0] * w[2],
+        u[0] * w[1] - u[1] * w[0],
+    ];
+    let len = dot3(n, n).sqrt();
+    let r = dot3(sub3(a, o), sub3(a, o)).sqrt();
+    if len == 0.0 || !(len.is_finite() && r.is_finite()) {
+        return false;
+    }
+    let k = h * r / len;
+    [1.0, -1.0].into_iter().all(|side| {
+        let x = [0, 1, 2].map(|i| o[i] + side * k * n[i]);
+        let s = orient3d(a, b, c, x);
+        s != 0.0 && insphere(a, b, c, x, p) * s > 0.0
+    })
+}
+
 /// `true` when `p` lies strictly inside the diametral ball of triangle `abc`: the smallest
 /// sphere through `a, b, c`, centred at their circumcentre in their plane. `p` need not be
 /// coplanar. Exact (barring overflow/underflow); `false` for a degenerate triangle, whose

@@ -442,7 +442,7 @@ fn all_faces_neighbours_and_consistency_check_agree() {
 }
 
 #[test]
-fn keep_surface_adds_points_only_inside_or_names_what_is_missing() {
+fn keep_surface_adds_points_only_inside_and_keeps_every_facet_whole() {
     // The cube's surface is in the Delaunay tetrahedralization of its corners: -Y keeps it
     // (every boundary face has input corners only) and refinement adds interior points only.
     let (d, m) = mesh_example("3d_cube.poly", "-pq1.414a0.01YQ", 1);
@@ -467,13 +467,18 @@ fn keep_surface_adds_points_only_inside_or_names_what_is_missing() {
         );
     }
     // The cavity's square sides are cospherical with the outer box's corners: the Delaunay
-    // tetrahedralization does not contain them, and -Y cannot add points to recover them.
-    let d = TempDir::new("box_hole_Y");
-    d.example("3d_box_hole.poly");
-    let msg = fails(&idmesh(&d.0, &["-pqY", "3d_box_hole.poly"]));
-    assert!(
-        msg.contains("-Y") && msg.contains("facet") && msg.contains("without -Y"),
-        "{msg}"
-    );
-    assert!(!d.exists("3d_box_hole.1.ele"), "nothing written on failure");
+    // tetrahedralization does not contain them all, and the conforming mesh puts Steiner
+    // points on them; -Y takes every one off the surface again.
+    let (d, m) = mesh_example("3d_box_hole.poly", "-pqYV", 0);
+    assert!(close(m.volume(), 32.0 - 4.0), "{}", m.volume());
+    let face = parse_face(&d.read("3d_box_hole.1.face"), "face", 0, m.points.len()).unwrap();
+    for f in &face.items {
+        assert!(
+            f.iter().all(|&v| v < 20),
+            "boundary face {f:?} has a Steiner point"
+        );
+    }
+    // Each square side is two triangles; the top has its window and lid: 2 per square side
+    // (5 outer, 6 inner), 8 around the window, 2 for the lid.
+    assert_eq!(face.items.len(), 2 * 5 + 2 * 6 + 8 + 2, "{:?}", face.items);
 }

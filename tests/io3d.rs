@@ -396,6 +396,7 @@ fn two_tets() -> TetMesh {
         edge_markers: vec![3, -1],
         complete: true,
         steiner_points: 0,
+        surface_kept: false,
     }
 }
 

@@ -3,7 +3,9 @@
 //! sharing a facet (two regions with attributes), and a box split by an internal facet; each
 //! optionally under a small random rotation (slanted facets). Every case is meshed with no
 //! quality bound, with radius-edge 2.0, and with radius-edge 1.414 plus a volume bound of a
-//! 500th of the domain, and judged by the independent checker in `common3d`.
+//! 500th of the domain, and judged by the independent checker in `common3d`; some also keeping
+//! the surface (-Y, with no bound and with the last set's), where the checker asserts that no
+//! Steiner point lies on the surface instead of the Delaunay property.
 //!
 //! Rotations are exact: the integer matrix of a quaternion with small integer entries, divided
 //! by a power of two, applied to dyadic coordinates, so facets stay exactly planar (idmesh
@@ -23,25 +25,10 @@ use common3d::{
 };
 use idmesh::{Facet, Options3, Plc, Region3};
 use proptest::prelude::*;
-use proptest::test_runner::FileFailurePersistence;
 
 /// Fixed seed for reproducible CI runs; `PROPTEST_SEED` and `PROPTEST_CASES` override.
 fn config(cases: u32) -> ProptestConfig {
-    let cases = std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(cases);
-    let seed = std::env::var("PROPTEST_SEED")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(0x3d3e_5a11);
-    ProptestConfig {
-        cases,
-        rng_seed: proptest::test_runner::RngSeed::Fixed(seed),
-        max_shrink_iters: 200,
-        failure_persistence: Some(Box::new(FileFailurePersistence::Off)),
-        ..ProptestConfig::default()
-    }
+    common3d::proptest_config(cases, 0x3d3e_5a11)
 }
 
 /// Rounds to a multiple of `2^-bits`.
@@ -72,8 +59,9 @@ fn make_frame(f: FrameRaw) -> Frame {
     }
 }
 
-/// The three option sets of the brief.
-fn option_sets(volume: f64) -> [Options3; 3] {
+/// The three option sets of the brief, then keeping the surface (-Y) without and with the
+/// third set's bounds.
+fn option_sets(volume: f64) -> [Options3; 5] {
     let guard = Options3 {
         max_steiner: Some(200_000),
         ..Options3::default()
@@ -87,6 +75,16 @@ fn option_sets(volume: f64) -> [Options3; 3] {
         Options3 {
             radius_edge: Some(1.414),
             max_volume: Some(volume / 500.0),
+            ..guard.clone()
+        },
+        Options3 {
+            keep_surface: true,
+            ..guard.clone()
+        },
+        Options3 {
+            radius_edge: Some(1.414),
+            max_volume: Some(volume / 500.0),
+            keep_surface: true,
             ..guard
         },
     ]
@@ -110,8 +108,10 @@ fn run(
     attributes: bool,
     mode: usize,
 ) -> Result<Report3, TestCaseError> {
+    let o = &option_sets(1.0)[mode];
     let spec = Spec3 {
-        check_quality: strict,
+        // Keeping the surface, the bounds are not met next to it (as in TetGen).
+        check_quality: strict && !o.keep_surface,
         tol: tolerance(plc),
         domain: Some(domain),
         timeout: std::time::Duration::from_secs(30),
@@ -739,4 +739,58 @@ property!(
     |raw| split(&raw),
     true,
     2
+);
+
+// Keeping the surface (-Y): every kind of input, aligned and rotated (slanted facets, whose
+// Steiner points must all come off the surface again), internal facets (two wedges around
+// every point taken off) and ring facets.
+property!(box_rotated_keep, box_raw(true), |raw| boxed(&raw), false, 3);
+property!(
+    box_rotated_keep_q1414_vol,
+    box_raw(true),
+    |raw| boxed(&raw),
+    false,
+    4
+);
+property!(
+    prism_aligned_keep_q1414_vol,
+    prism_raw(false),
+    |raw| build_prism(&raw),
+    false,
+    4
+);
+property!(
+    prism_rotated_keep,
+    prism_raw(true),
+    |raw| build_prism(&raw),
+    false,
+    3
+);
+property!(
+    stack_rotated_keep_q1414_vol,
+    stack_raw(true, false),
+    |raw| stacked(&raw),
+    true,
+    4
+);
+property!(
+    inset_rotated_keep,
+    stack_raw(true, true),
+    |raw| stacked(&raw),
+    true,
+    3
+);
+property!(
+    split_rotated_keep,
+    split_raw(true),
+    |raw| split(&raw),
+    true,
+    3
+);
+property!(
+    split_aligned_keep_q1414_vol,
+    split_raw(false),
+    |raw| split(&raw),
+    true,
+    4
 );

@@ -55,12 +55,19 @@ pub struct Options3 {
     /// A user sizing test; see [`SizingFn3`]. Default: `None`.
     pub sizing: Option<SizingFn3>,
     /// Keep the input surface (TetGen's `-Y`): no Steiner points on input edges or facets.
-    /// idmesh makes conforming Delaunay meshes and has no constrained recovery, so this works
-    /// when every input edge and every facet's Delaunay triangulation already appear in the
-    /// Delaunay tetrahedralization; otherwise meshing fails with [`Error::Unsupported`] naming
-    /// the first missing segment or facet triangle. Refinement then only adds interior
-    /// points: a tetrahedron whose circumcenter would encroach the surface stays as it is, so
-    /// the quality and volume bounds may not be met next to the boundary. Default: `false`.
+    /// The boundary faces of the mesh are then the input's triangles (a polygon facet is
+    /// triangulated on its own vertices) and [`TetMesh::surface_kept`] is set.
+    ///
+    /// How: the conforming Delaunay mesh is made first (its boundary Steiner points recover
+    /// every facet, whatever the input); each of those points is then moved off the surface
+    /// into the domain (exactly checked to give positive tetrahedra) and removed where its
+    /// neighbourhood allows. So any closed PLC works, including surfaces whose triangles are
+    /// not Delaunay and polyhedra that cannot be tetrahedralized without interior points;
+    /// the tetrahedra next to the surface are not Delaunay. Refinement afterwards adds
+    /// interior points only, and, as in TetGen, a tetrahedron whose circumcenter would
+    /// encroach a subface or subsegment stays as it is: the quality and volume bounds may not
+    /// be met next to the boundary. A free input edge inside the volume (on no facet) cannot
+    /// be kept whole: meshing then fails naming the point. Default: `false`.
     pub keep_surface: bool,
     /// Print progress lines to standard error during long runs. Default: `false`.
     pub verbose: bool,

@@ -39,6 +39,10 @@ pub struct TetMesh {
     pub complete: bool,
     /// Number of Steiner points added (vertices beyond the input points that are in the mesh).
     pub steiner_points: usize,
+    /// The mesh keeps the input surface (`Options3::keep_surface`, TetGen's `-Y`): every
+    /// subface has input vertices only, and the tetrahedra next to the surface need not be
+    /// Delaunay. [`TetMesh::validate`] then checks that instead of empty circumspheres.
+    pub surface_kept: bool,
 }
 
 /// Quality figures of a tetrahedral mesh, as printed by `idmesh tetgen -V`.
@@ -87,7 +91,9 @@ impl TetMesh {
     }
 
     /// Checks the mesh invariants exactly: positive orientation, neighbour symmetry, every
-    /// circumsphere empty of all mesh vertices, every subface a face of the mesh.
+    /// subface a face of the mesh, and every circumsphere empty of all mesh vertices, or, for
+    /// a mesh that keeps the input surface ([`TetMesh::surface_kept`]), no Steiner vertex on a
+    /// subface.
     pub fn validate(&self) -> Result<(), Error> {
         super::validate::validate_mesh(self)
     }

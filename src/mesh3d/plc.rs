@@ -13,6 +13,9 @@
 
 use std::collections::VecDeque;
 
+mod flip;
+mod keep;
+
 use super::facet_mesh::{FacetInsertError, FacetMesh};
 use super::features::{ekey, fkey, Features};
 use super::store::{Located, Tets, GHOST};
@@ -54,6 +57,9 @@ struct Mesher<'a> {
     /// missing subface could be wrong) and are listed in `unknown`.
     dirty: bool,
     unknown: Vec<u32>,
+    /// The surface is kept (`-Y`) and the exterior carved away: points enter through
+    /// [`Mesher::insert3d_walled`] and nothing on the surface is split any more.
+    walled: bool,
     pts: Vec<[f64; 3]>,
     tets: Tets,
     feat: Features,
@@ -126,6 +132,7 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
         bbox: [lo, hi],
         dirty: false,
         unknown: Vec::new(),
+        walled: false,
         pts: plc.points.clone(),
         tets,
         feat,
@@ -157,6 +164,9 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
     }
     m.run()?;
     m.classify(plc)?;
+    if opts.keep_surface {
+        m.keep_input_surface()?;
+    }
     if m.wants_quality() {
         for t in 0..m.tets.num_slots() as u32 {
             m.maybe_queue_tet(t);
@@ -165,7 +175,8 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
         // Regions are tracked through refinement (inherited from the cavity, or resolved
         // after conformity was restored); a full classification checks that and requeues any
         // tet whose region it corrects. It should find none; the rounds are a safety net.
-        for _round in 0..8 {
+        // (Walled cavities never cross a subface, so regions cannot go wrong there.)
+        for _round in 0..if m.walled { 0 } else { 8 } {
             if m.reclassify()? == 0 || !m.complete {
                 break;
             }
@@ -286,6 +297,7 @@ impl Mesher<'_> {
     /// Inserts vertex `v` into the 3D mesh. Provisional insertion is refused (nothing changes)
     /// when `v` encroaches a subsegment or subface, which are returned.
     fn insert3d(&mut self, v: u32, provisional: bool) -> Result<(), Vec<Enc>> {
+        debug_assert!(!self.walled, "insert3d on a carved mesh");
         let p = self.pts[v as usize];
         let start = match self.tets.locate(p, self.hint) {
             Located::InTet(t) => t,
@@ -301,9 +313,6 @@ impl Mesher<'_> {
         touched_segs.clear();
         touched_faces.clear();
         self.face_region.clear();
-        // Keeping the surface, a point may lie in a subface's diametral ball: only cavities
-        // that would remove a subface or subsegment from the mesh are refused.
-        let keep = self.opts.keep_surface;
         for &t in self.tets.cavity() {
             let vs = self.tets.verts(t);
             if vs.contains(&GHOST) {
@@ -326,7 +335,7 @@ impl Mesher<'_> {
                 }
                 if let Some(fid) = self.feat.subface(fv) {
                     let [a, b, c] = fv.map(|x| self.pts[x as usize]);
-                    if crossed || (!keep && in_diametral_ball_tri(a, b, c, p)) {
+                    if crossed || in_diametral_ball_tri(a, b, c, p) {
                         enc.push(Enc::Face(fv, fid));
                     }
                     if crossed
@@ -344,26 +353,10 @@ impl Mesher<'_> {
             for (i, j) in EDGES {
                 let (a, b) = (vs[i], vs[j]);
                 if self.feat.subseg(a, b).is_some() {
-                    if !keep
-                        && in_diametral_ball_seg3(self.pts[a as usize], self.pts[b as usize], p)
-                    {
+                    if in_diametral_ball_seg3(self.pts[a as usize], self.pts[b as usize], p) {
                         enc.push(Enc::Seg([a, b]));
                     }
                     touched_segs.push([a, b]);
-                }
-            }
-        }
-        if keep && provisional {
-            let mut star = Vec::new();
-            for &[a, b] in &touched_segs {
-                star.clear();
-                self.tets.star(a, &mut star);
-                let swallowed = star
-                    .iter()
-                    .filter(|&&t| self.tets.verts(t).contains(&b))
-                    .all(|&t| self.tets.in_cavity(t));
-                if swallowed {
-                    enc.push(Enc::Seg([a, b]));
                 }
             }
         }
@@ -524,9 +517,10 @@ impl Mesher<'_> {
             }
         }
         let _ = t0;
-        if !self.sharp.is_empty() {
+        if !self.sharp.is_empty() || self.opts.keep_surface {
             // Lazy mode (small input angles): vertices of nearby features would encroach each
-            // other's subsegments forever; only refused circumcenters split them.
+            // other's subsegments forever; only refused circumcenters split them. Keeping the
+            // surface, every split point is taken off it again: only missing ones are split.
             return false;
         }
         // The edge's link: a vertex strictly inside the diametral ball of a Delaunay edge shows
@@ -557,9 +551,6 @@ impl Mesher<'_> {
         let Some(e) = self.feat.subseg(a, b) else {
             return Ok(());
         };
-        if self.opts.keep_surface {
-            return self.check_kept_subseg(a, b, e, force);
-        }
         if !force && !self.subseg_needs_split(a, b, e) {
             return Ok(());
         }
@@ -602,34 +593,6 @@ impl Mesher<'_> {
             .map_err(|_| Error::Internal(format!("segment split point {m} refused")))
     }
 
-    /// `take_subseg` under [`Options3::keep_surface`]: nothing is split; a subsegment missing
-    /// from the 3D mesh or from a facet mesh is an error.
-    fn check_kept_subseg(&self, a: u32, b: u32, e: u32, force: bool) -> Result<(), Error> {
-        if force {
-            return Ok(());
-        }
-        let (pa, pb) = (self.pts[a as usize], self.pts[b as usize]);
-        if self.tets.find_edge(a, b).is_none() {
-            return Err(Error::Unsupported(format!(
-                "-Y (keep the surface): the input edge {pa:?}-{pb:?} is not an edge of the \
-                 Delaunay tetrahedralization; without Steiner points on it it cannot appear \
-                 (idmesh makes conforming Delaunay meshes and has no constrained recovery): \
-                 mesh without -Y"
-            )));
-        }
-        for &f in &self.feat.edges[e as usize].facets {
-            let fm = &self.fmesh[f as usize];
-            if fm.started() && !fm.has_edge(a, b) {
-                return Err(Error::Unsupported(format!(
-                    "-Y (keep the surface): the input edge {pa:?}-{pb:?} is not an edge of the \
-                     Delaunay triangulation of facet {f} (0-based); without Steiner points on \
-                     it it cannot appear (idmesh has no constrained recovery): mesh without -Y"
-                )));
-            }
-        }
-        Ok(())
-    }
-
     /// Where to split subsegment `ab`: the midpoint, or, when exactly one end is an input vertex
     /// where input edges meet (an apex), the point at the power-of-two distance from it nearest
     /// to half the length (Ruppert's concentric shells): split points of edges meeting at a
@@ -655,8 +618,8 @@ impl Mesher<'_> {
         let Some(h) = self.tets.find_face(v[0], v[1], v[2]) else {
             return true;
         };
-        if !self.sharp.is_empty() {
-            return false; // lazy mode, as for subsegments
+        if !self.sharp.is_empty() || self.opts.keep_surface {
+            return false; // lazy mode, or keeping the surface, as for subsegments
         }
         let [a, b, c] = v.map(|x| self.pts[x as usize]);
         let (t, f) = (h / 4, (h % 4) as usize);
@@ -673,19 +636,6 @@ impl Mesher<'_> {
     fn take_subface(&mut self, v: [u32; 3], fid: u32, force: bool) -> Result<(), Error> {
         if self.feat.subface(v) != Some(fid) {
             return Ok(());
-        }
-        if self.opts.keep_surface {
-            // A refused point's demand is dropped; a missing subface cannot be recovered.
-            if force || self.tets.find_face(v[0], v[1], v[2]).is_some() {
-                return Ok(());
-            }
-            let [a, b, c] = v.map(|x| self.pts[x as usize]);
-            return Err(Error::Unsupported(format!(
-                "-Y (keep the surface): the triangle {a:?}, {b:?}, {c:?} of facet {fid} \
-                 (0-based) is not a face of the Delaunay tetrahedralization; without Steiner \
-                 points on the facet it cannot appear (idmesh makes conforming Delaunay meshes \
-                 and has no constrained recovery): mesh without -Y"
-            )));
         }
         if !force && !self.subface_needs_split(v) {
             return Ok(());
@@ -807,6 +757,11 @@ impl Mesher<'_> {
                 return true;
             }
         }
+        self.too_large(t, c)
+    }
+
+    /// Whether tet `t` (corners `c`) exceeds a volume bound or the sizing test.
+    fn too_large(&self, t: u32, c: [[f64; 3]; 4]) -> bool {
         let vol = tet_volume(c).abs();
         if self.opts.max_volume.is_some_and(|mv| vol > mv) {
             return true;
@@ -857,6 +812,9 @@ impl Mesher<'_> {
             cc = [0, 1, 2].map(|k| 0.25 * (c[0][k] + c[1][k] + c[2][k] + c[3][k]));
         }
         let m = self.new_vertex(cc)?;
+        if self.walled {
+            return self.take_tet_walled(t, c, m);
+        }
         match self.insert3d(m, true) {
             Ok(()) => {
                 self.steiner += 1;
@@ -869,10 +827,6 @@ impl Mesher<'_> {
             Err(enc) => {
                 self.pts.pop();
                 self.counts.tet_refused += 1;
-                if self.opts.keep_surface {
-                    // Nothing may be added to the surface: the tet stays as it is.
-                    return Ok(());
-                }
                 if enc.is_empty() {
                     // The circumcenter coincides with a vertex, or lies outside the box. Outside
                     // the box it is outside the domain, beyond a facet: the subface the way to
@@ -1131,7 +1085,8 @@ impl Mesher<'_> {
             cand.retain(|&t| {
                 let out = (0..4).any(|f| {
                     let n = self.tets.neighbor(t, f).0;
-                    self.tets.is_ghost(n)
+                    n == NONE
+                        || self.tets.is_ghost(n)
                         || self.region[n as usize] == OUTSIDE
                         || dropped.contains(&n)
                 });
@@ -1200,7 +1155,7 @@ impl Mesher<'_> {
                 let vs = self.tets.verts(t);
                 let f = (0..4).find(|&f| vs[f] == x).unwrap_or(0);
                 let (n, _) = self.tets.neighbor(t, f);
-                nb[k] = index[n as usize];
+                nb[k] = if n == NONE { NONE } else { index[n as usize] };
             }
             neighbors.push(nb);
         }
@@ -1311,6 +1266,7 @@ impl Mesher<'_> {
             edge_markers: edge_markers2,
             complete: self.complete,
             steiner_points,
+            surface_kept: self.walled,
         };
         let _ = ekey;
         Ok(mesh)

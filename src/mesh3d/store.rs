@@ -20,6 +20,12 @@
 //! (Provisional insertion, paper Fig. 8): [`Tets::find_cavity`], then [`Tets::commit_cavity`]
 //! or [`Tets::cancel_cavity`]. [`Tets::insert`] does locate + find + commit.
 //!
+//! Keeping the input surface (TetGen's `-Y`) the store is *carved* ([`Tets::carve`]): the tets
+//! outside the domain are deleted and the faces they shared with the domain become *open* (no
+//! neighbour, [`NONE`]). A carved store is edited with [`Tets::replace`] and gets new points
+//! through [`Tets::locate_walled`] and [`Tets::find_cavity_walled`], which never cross a wall
+//! (a subface) or an open face; [`Tets::locate`] and [`Tets::find_cavity`] need a closed store.
+//!
 //! The conflict rule is the paper's (open circumballs, needed by Lemma 4.7): a real tet conflicts
 //! with `p` iff `p` is strictly inside its circumsphere; a ghost iff `p` is strictly beyond its
 //! hull triangle, or exactly in the triangle's plane and strictly inside its circumcircle. Both
@@ -28,6 +34,9 @@
 use crate::predicates::{insphere, orient3d};
 
 use super::NONE;
+
+mod edit;
+pub use edit::ReplaceError;
 
 /// A vertex index.
 pub type VertexId = u32;
@@ -570,10 +579,13 @@ impl Tets {
     }
 
     /// The neighbour across face `f` of tet `t` (the face opposite `verts(t)[f]`), and which
-    /// face of the neighbour it is.
+    /// face of the neighbour it is; `(NONE, 0)` for an open face (see [`Tets::carve`]).
     #[inline]
     pub fn neighbor(&self, t: TetId, f: usize) -> (TetId, usize) {
         let h = self.tets[t as usize].n[f];
+        if h == NONE {
+            return (NONE, 0);
+        }
         (h >> 2, (h & 3) as usize)
     }
 
@@ -742,8 +754,10 @@ impl Tets {
             set_state(&mut self.state, t as usize, 0);
         }
         for &h in &self.boundary {
-            let u = self.tets[(h >> 2) as usize].n[(h & 3) as usize] >> 2;
-            set_state(&mut self.state, u as usize, 0);
+            let u = self.tets[(h >> 2) as usize].n[(h & 3) as usize];
+            if u != NONE {
+                set_state(&mut self.state, (u >> 2) as usize, 0);
+            }
         }
         self.cavity.clear();
         self.boundary.clear();
@@ -879,7 +893,9 @@ impl Tets {
             let f = (h & 3) as usize;
             let [a, b, c] = FACE[f].map(|i| tet.v[i]);
             let outside = tet.n[f];
-            set_state(state, (outside >> 2) as usize, 0);
+            if outside != NONE {
+                set_state(state, (outside >> 2) as usize, 0);
+            }
             bface.push([a, b, c, outside]);
         }
         for &t in cavity.iter() {
@@ -913,7 +929,9 @@ impl Tets {
                 v: [v, a, b, c],
                 n: [outside, NONE, NONE, NONE],
             };
-            tets[(outside >> 2) as usize].n[(outside & 3) as usize] = neighbor_ref(nt, 0);
+            if outside != NONE {
+                tets[(outside >> 2) as usize].n[(outside & 3) as usize] = neighbor_ref(nt, 0);
+            }
             new_tets.push(nt);
             // Face j (1..=3) holds the directed boundary edge below; the neighbouring new tet
             // holds the same edge reversed. File every half now, link them in a second pass:
@@ -967,8 +985,9 @@ impl Tets {
     fn debug_check_new_tets(&self, v: VertexId) {
         for &t in &self.new_tets {
             let tet = &self.tets[t as usize];
+            // Face 0 lies on the cavity's boundary, which may be open (after a carve).
             assert!(
-                !tet.n.contains(&NONE),
+                !tet.n[1..].contains(&NONE),
                 "cavity of vertex {v} is not a topological ball (new tet {t} left unlinked)"
             );
             if !tet.v.contains(&GHOST) {
@@ -1023,7 +1042,7 @@ impl Tets {
             i += 1;
             let tet = &self.tets[t as usize];
             for f in 0..4 {
-                if tet.v[f] == v {
+                if tet.v[f] == v || tet.n[f] == NONE {
                     continue;
                 }
                 let u = tet.n[f] >> 2;

@@ -14,7 +14,8 @@ use crate::predicates::{insphere, orient3d};
 /// Checks a tet mesh exactly: index ranges and array lengths; every tet positively oriented;
 /// neighbours mutual, sharing the right three vertices, on opposite sides of them; no face in
 /// more than two tets; every subface a face of some tet; every circumsphere empty of all mesh
-/// vertices. The error names the first offending tet, face or vertex.
+/// vertices, or, when the mesh keeps the input surface, no Steiner vertex on a subface. The
+/// error names the first offending tet, face or vertex.
 pub fn validate_mesh(mesh: &TetMesh) -> Result<(), Error> {
     check_mesh(mesh).map_err(|m| Error::Internal(format!("mesh check failed: {m}")))
 }
@@ -35,6 +36,17 @@ fn check_mesh(m: &TetMesh) -> Result<(), String> {
                 "subface {i} {f:?} is not a face of any tetrahedron"
             ));
         }
+        if m.surface_kept {
+            if let Some(&v) = f.iter().find(|&&v| v as usize >= m.num_input_vertices) {
+                return Err(format!(
+                    "subface {i} {f:?} has the Steiner vertex {v}, but the surface is kept"
+                ));
+            }
+        }
+    }
+    if m.surface_kept {
+        // Not Delaunay next to the surface (see `TetMesh::surface_kept`).
+        return Ok(());
     }
     check_empty_spheres(m)
 }
@@ -423,6 +435,9 @@ impl Tets {
             }
             for f in 0..4 {
                 let (u, g) = self.neighbor(t, f);
+                if u == NONE && ghosts == 0 && self.vertex_tet(GHOST) == NONE {
+                    continue; // an open face of a carved store
+                }
                 if u as usize >= self.num_slots() || !self.alive(u) {
                     return Err(format!("tet {t} face {f}: neighbour {u} is not a live tet"));
                 }
@@ -494,6 +509,9 @@ impl Tets {
             }
             for f in 0..4 {
                 let (u, g) = self.neighbor(t, f);
+                if u == NONE {
+                    continue;
+                }
                 let w = self.verts(u)[g];
                 if w == GHOST || self.verts(t).contains(&w) {
                     continue;

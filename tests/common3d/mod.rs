@@ -810,7 +810,24 @@ pub fn check_plc_mesh(
         return Err("no tetrahedra".into());
     }
     let topo = topology(mesh)?;
-    check_delaunay(mesh)?;
+    if opts.keep_surface {
+        // Keeping the surface (-Y): no Steiner point on it; not Delaunay next to it.
+        if !mesh.surface_kept {
+            return Err("keep_surface was asked, the mesh does not say it kept the surface".into());
+        }
+        for f in &mesh.faces {
+            if let Some(&v) = f.iter().find(|&&v| v as usize >= n_in) {
+                return Err(format!("subface {f:?} has the Steiner vertex {v} (-Y)"));
+            }
+        }
+        for e in &mesh.edges {
+            if let Some(&v) = e.iter().find(|&&v| v as usize >= n_in) {
+                return Err(format!("subsegment {e:?} has the Steiner vertex {v} (-Y)"));
+            }
+        }
+    } else {
+        check_delaunay(mesh)?;
+    }
     if spec.all_inputs_used {
         if let Some(i) = (0..n_in).find(|&i| !topo.used[i]) {
             return Err(format!("input vertex {i} {:?} is in no tet", plc.points[i]));
@@ -1234,4 +1251,25 @@ pub fn regular_polygon(n: usize, r: f64) -> Vec<[f64; 2]> {
             [r * a.cos(), r * a.sin()]
         })
         .collect()
+}
+
+/// Proptest settings for CI: `cases` cases from a fixed seed (`seed`), reproducible run to run;
+/// the environment variables `PROPTEST_CASES` and `PROPTEST_SEED` override both. No failure
+/// files; at most 200 shrink steps.
+pub fn proptest_config(cases: u32, seed: u64) -> proptest::test_runner::Config {
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(cases);
+    let seed = std::env::var("PROPTEST_SEED")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(seed);
+    proptest::test_runner::Config {
+        cases,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(seed),
+        max_shrink_iters: 200,
+        failure_persistence: Some(Box::new(proptest::test_runner::FileFailurePersistence::Off)),
+        ..proptest::test_runner::Config::default()
+    }
 }

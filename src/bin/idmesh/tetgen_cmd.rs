@@ -34,11 +34,10 @@ Switches are letters that may be grouped, e.g. -pq1.414a0.1V:
               volume bounds of the input
   -A          write each tetrahedron's regional attribute to the .ele file
   -S[N]       at most N Steiner points (-S alone: no limit); a warning is printed if reached
-  -Y          keep the input surface: no Steiner points on segments or facets. Works when the
-              surface (each facet's Delaunay triangulation) is in the Delaunay
-              tetrahedralization; otherwise an error names the missing edge or triangle
-              (idmesh has no constrained recovery). Tets whose circumcenter would encroach
-              the surface are left as they are
+  -Y          keep the input surface: no Steiner points on segments or facets (the boundary
+              faces are the input triangles; interior points are added where the surface
+              needs them, and the tets next to the surface are not Delaunay). As in TetGen,
+              tets whose circumcenter would encroach the surface are left as they are
   -z          number output items from 0
   -f          write every face to the .face file, not only the boundary and facet faces
   -e          write the subsegments to an .edge file

@@ -1,0 +1,155 @@
+//! A small dense linear program solver (simplex method with Bland's rule), for the few
+//! constructions that need one: the deepest point of a star's kernel, where a vertex taken off
+//! the surface goes (`-Y`). Floating point: its answers are constructions, checked afterwards
+//! by exact predicates, never decisions.
+
+/// The Chebyshev centre of the polyhedron `{x : n_i · (x - origin) <= d_i}` (the `n_i` need
+/// not be unit vectors): the centre `x` and radius `r` of the largest ball inside, with
+/// `x` within `box_half` of `origin` in every coordinate (which keeps the program bounded).
+/// `origin` must lie in the polyhedron up to rounding (every `d_i >= 0`; negative ones are
+/// taken as 0). `None` when the simplex runs out of its pivot budget or nothing is inside.
+pub fn chebyshev_center(
+    origin: [f64; 3],
+    planes: &[([f64; 3], f64)],
+    box_half: f64,
+) -> Option<([f64; 3], f64)> {
+    // Variables z = (y+, y-, r) >= 0 with y = x - origin = y+ - y-.
+    // Rows: n·y + |n| r <= d, and ±y_k <= box_half.
+    let mut rows: Vec<([f64; 7], f64)> = Vec::with_capacity(planes.len() + 6);
+    for &(n, d) in planes {
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        if len == 0.0 || !len.is_finite() || !d.is_finite() {
+            continue;
+        }
+        rows.push(([n[0], n[1], n[2], -n[0], -n[1], -n[2], len], d.max(0.0)));
+    }
+    for k in 0..3 {
+        let mut a = [0.0; 7];
+        a[k] = 1.0;
+        a[k + 3] = -1.0;
+        rows.push((a, box_half));
+        let mut b = [0.0; 7];
+        b[k] = -1.0;
+        b[k + 3] = 1.0;
+        rows.push((b, box_half));
+    }
+    let z = maximize(&[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0], &rows)?;
+    let x = [0, 1, 2].map(|k| origin[k] + (z[k] - z[k + 3]));
+    (z[6] > 0.0).then_some((x, z[6]))
+}
+
+/// Maximizes `c · z` subject to `a_i · z <= b_i` (every `b_i >= 0`, so `z = 0` is feasible)
+/// and `z >= 0`. Returns an optimal `z`, or `None` when unbounded or out of pivot budget.
+fn maximize<const N: usize>(c: &[f64; N], rows: &[([f64; N], f64)]) -> Option<[f64; N]> {
+    let m = rows.len();
+    let width = N + m + 1;
+    // Tableau: m constraint rows (structural, slack, right-hand side), then the objective row
+    // holding the reduced costs -c.
+    let mut t = vec![0.0f64; (m + 1) * width];
+    for (i, (a, b)) in rows.iter().enumerate() {
+        t[i * width..i * width + N].copy_from_slice(a);
+        t[i * width + N + i] = 1.0;
+        t[i * width + width - 1] = *b;
+    }
+    for (j, &cj) in c.iter().enumerate() {
+        t[m * width + j] = -cj;
+    }
+    let mut basis: Vec<usize> = (N..N + m).collect();
+    let scale = rows
+        .iter()
+        .flat_map(|(a, b)| a.iter().chain(std::iter::once(b)))
+        .fold(0.0f64, |s, x| s.max(x.abs()))
+        .max(f64::MIN_POSITIVE);
+    let eps = 1e-12 * scale;
+    for _ in 0..50 * (m + N) {
+        // Bland's rule: the lowest-index column with a negative reduced cost enters...
+        let Some(col) = (0..N + m).find(|&j| t[m * width + j] < -1e-12) else {
+            let mut z = [0.0; N];
+            for (i, &bv) in basis.iter().enumerate() {
+                if bv < N {
+                    z[bv] = t[i * width + width - 1];
+                }
+            }
+            return Some(z);
+        };
+        // ...and the row with the smallest ratio leaves (lowest basis index on ties).
+        let mut pick: Option<(usize, f64)> = None;
+        for i in 0..m {
+            let a = t[i * width + col];
+            if a > eps {
+                let ratio = t[i * width + width - 1] / a;
+                let better = match pick {
+                    None => true,
+                    Some((r, best)) => ratio < best || (ratio == best && basis[i] < basis[r]),
+                };
+                if better {
+                    pick = Some((i, ratio));
+                }
+            }
+        }
+        let (row, _) = pick?;
+        let p = t[row * width + col];
+        for x in &mut t[row * width..(row + 1) * width] {
+            *x /= p;
+        }
+        for i in 0..=m {
+            if i == row {
+                continue;
+            }
+            let f = t[i * width + col];
+            if f != 0.0 {
+                for j in 0..width {
+                    t[i * width + j] -= f * t[row * width + j];
+                }
+            }
+        }
+        basis[row] = col;
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::chebyshev_center;
+
+    #[test]
+    fn centre_of_a_cube_seen_from_a_corner() {
+        // The unit cube as six half-spaces, around its corner at the origin.
+        let planes = [
+            ([-1.0, 0.0, 0.0], 0.0),
+            ([1.0, 0.0, 0.0], 1.0),
+            ([0.0, -1.0, 0.0], 0.0),
+            ([0.0, 1.0, 0.0], 1.0),
+            ([0.0, 0.0, -2.0], 0.0), // normals need not be unit vectors
+            ([0.0, 0.0, 1.0], 1.0),
+        ];
+        let (x, r) = chebyshev_center([0.0; 3], &planes, 10.0).unwrap();
+        for k in 0..3 {
+            assert!((x[k] - 0.5).abs() < 1e-9, "{x:?}");
+        }
+        assert!((r - 0.5).abs() < 1e-9);
+    }
+
+    #[test]
+    fn centre_of_a_thin_wedge() {
+        // Above z = 0 and below the plane z = 0.01 x, cut at x <= 1 and |y| <= 1: the largest
+        // ball touches z = 0 and the slanted plane near x = 1.
+        let planes = [
+            ([0.0, 0.0, -1.0], 0.0),
+            ([-0.01, 0.0, 1.0], 0.0),
+            ([1.0, 0.0, 0.0], 1.0),
+            ([0.0, 1.0, 0.0], 1.0),
+            ([0.0, -1.0, 0.0], 1.0),
+        ];
+        let (x, r) = chebyshev_center([0.0; 3], &planes, 10.0).unwrap();
+        assert!(r > 0.0 && r < 0.01);
+        assert!(x[2] > 0.0 && x[2] < 0.01 * x[0], "{x:?}");
+    }
+
+    #[test]
+    fn empty_interior_gives_none() {
+        // z >= 0 and z <= 0: a plane, no ball fits.
+        let planes = [([0.0, 0.0, -1.0], 0.0), ([0.0, 0.0, 1.0], 0.0)];
+        assert!(chebyshev_center([0.0; 3], &planes, 1.0).is_none());
+    }
+}

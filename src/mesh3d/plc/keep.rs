@@ -1,0 +1,704 @@
+//! Keeping the input surface (TetGen's `-Y`): no Steiner point on an input edge or facet.
+//!
+//! The conforming Delaunay mesh is made first, as without `-Y`: its Steiner points on edges and
+//! facets are what recovers every facet, whatever the input (cospherical ties, surface
+//! triangles that are not Delaunay, Schönhardt-like polyhedra). Then the outside is carved away
+//! and every boundary Steiner point `s` is *suppressed*:
+//! * each facet through `s` is triangulated again without it (its star in the facet is a
+//!   polygon; ear clipping, exact in the facet's projection), and an input edge through `s`
+//!   gets its two pieces back as one;
+//! * the tets around `s` fall into groups, one per wedge of the domain between the facets
+//!   through `s`; each group is re-coned from a new point moved off the facets into its
+//!   wedge. Every face of the group's boundary (its faces opposite `s` and the new facet
+//!   triangles) joined to a point strictly inside the group's kernel is a positive tet, and
+//!   the kernel has interior right next to `s`, so such a point exists; it is picked with
+//!   exact orientation tests ([`Tets::replace`] checks the result again).
+//!
+//! The moved points are then removed where their star can be re-coned from one of its own
+//! vertices, so that points stay only where the surface needs them (a Schönhardt-like
+//! region). The result is a valid tetrahedralization whose boundary is exactly the input
+//! surface; it is not Delaunay next to the surface. Quality refinement afterwards inserts
+//! interior points only, with cavities that stop at subfaces and are shrunk to star shape
+//! ([`Tets::find_cavity_walled`]).
+
+use super::{Mesher, UNKNOWN};
+use crate::error::Error;
+use crate::mesh3d::features::{ekey, fkey, proj};
+use crate::mesh3d::store::{ReplaceError, FACE};
+use crate::mesh3d::NONE;
+use crate::predicates::{in_diametral_ball_seg3, in_lens_tri, incircle, orient2d, orient3d};
+
+/// Height of the lens of a subface (relative to its circumradius) that refinement points must
+/// stay out of once the surface is kept. TetGen refuses the whole diametral ball (height 1),
+/// which leaves a cube's six tets as they are whatever the volume bound; a flatter lens lets
+/// points in at a distance that still makes good tets with the subface (radius-edge about 1.1
+/// at half the circumradius above its centre) and keeps them from creeping onto it.
+const LENS_HEIGHT: f64 = 0.5;
+
+/// A facet's triangulation around a suppressed point: the facet and its new triangles
+/// (counter-clockwise in the facet's projection), with the old subfaces they replace.
+struct FacetPatch {
+    facet: u32,
+    old: Vec<[u32; 3]>,
+    new: Vec<[u32; 3]>,
+}
+
+/// One group of tets around a suppressed point: the tets (star indices), their floor faces as
+/// seen from inside the group (outward, in [`FACE`] order), and the facets they lie on.
+#[derive(Default)]
+struct Group {
+    tets: Vec<usize>,
+    floor: Vec<([u32; 3], u32)>,
+}
+
+impl Mesher<'_> {
+    /// Turns the classified conforming mesh into one that keeps the input surface (see the
+    /// module documentation). Afterwards points enter with walls ([`Mesher::insert3d_walled`]).
+    pub(super) fn keep_input_surface(&mut self) -> Result<(), Error> {
+        let region = &self.region;
+        self.tets
+            .carve(|t| region.get(t as usize).is_some_and(|&r| r < UNKNOWN));
+        self.walled = true;
+        let steiner: Vec<u32> = (self.num_input as u32..self.pts.len() as u32)
+            .filter(|v| {
+                self.feat.vert_facets.contains_key(v) || self.feat.split_edge.contains_key(v)
+            })
+            .collect();
+        let mut moved = Vec::new();
+        for s in steiner {
+            if self.tets.vertex_tet(s) == NONE {
+                continue; // outside the domain (on a facet between holes, say)
+            }
+            self.suppress(s, &mut moved)?;
+        }
+        self.remove_moved_points(&moved);
+        let flips = self.delaunay_flips();
+        if self.opts.verbose {
+            eprintln!(
+                "idmesh: -Y: {} boundary Steiner points taken off the surface, {} interior points \
+                 left, {flips} flips",
+                moved.len(),
+                moved
+                    .iter()
+                    .filter(|&&v| self.tets.vertex_tet(v) != NONE)
+                    .count()
+            );
+        }
+        Ok(())
+    }
+
+    /// Suppresses boundary Steiner point `s`; the points it moves into the domain are added
+    /// to `moved`.
+    fn suppress(&mut self, s: u32, moved: &mut Vec<u32>) -> Result<(), Error> {
+        let at = self.pts[s as usize];
+        let fail = |why: String| {
+            Error::Internal(format!(
+                "-Y (keep the surface): cannot take the Steiner point {at:?} off the surface: {why}"
+            ))
+        };
+        let mut star = Vec::new();
+        self.tets.star(s, &mut star);
+        // Groups: star tets joined across faces through s that are not subfaces.
+        let mut parent: Vec<usize> = (0..star.len()).collect();
+        fn root(p: &mut [usize], mut x: usize) -> usize {
+            while p[x] != x {
+                p[x] = p[p[x]];
+                x = p[x];
+            }
+            x
+        }
+        let mut floor_faces: Vec<(usize, [u32; 3], u32)> = Vec::new();
+        for (i, &t) in star.iter().enumerate() {
+            let vs = self.tets.verts(t);
+            for f in 0..4 {
+                if vs[f] == s {
+                    continue;
+                }
+                let face = FACE[f].map(|k| vs[k]);
+                if let Some(fid) = self.feat.subface(face) {
+                    floor_faces.push((i, face, fid));
+                    continue;
+                }
+                let (n, _) = self.tets.neighbor(t, f);
+                if n == NONE {
+                    return Err(fail(format!("the open face {face:?} is not a subface")));
+                }
+                let j = star
+                    .iter()
+                    .position(|&u| u == n)
+                    .ok_or_else(|| fail("its star is not closed".into()))?;
+                let (a, b) = (root(&mut parent, i), root(&mut parent, j));
+                parent[a] = b;
+            }
+        }
+        let mut groups: Vec<Group> = Vec::new();
+        let mut group_of = vec![usize::MAX; star.len()];
+        for i in 0..star.len() {
+            let r = root(&mut parent, i);
+            if group_of[r] == usize::MAX {
+                group_of[r] = groups.len();
+                groups.push(Group::default());
+            }
+            group_of[i] = group_of[r];
+            groups[group_of[i]].tets.push(i);
+        }
+        for &(i, face, fid) in &floor_faces {
+            groups[group_of[i]].floor.push((face, fid));
+        }
+        if groups.iter().any(|g| g.floor.is_empty()) {
+            // A free input edge through the volume: no facet to move the point off.
+            return Err(Error::Unsupported(format!(
+                "-Y (keep the surface): the Steiner point {at:?} on an input edge with the \
+                 domain all around it (a free segment, on no facet bounding the domain) cannot \
+                 be taken off: mesh without -Y"
+            )));
+        }
+        // Each facet through s, triangulated again without it.
+        let mut facets: Vec<u32> = floor_faces.iter().map(|f| f.2).collect();
+        facets.sort_unstable();
+        facets.dedup();
+        let mut patches = Vec::with_capacity(facets.len());
+        for fid in facets {
+            let mut old: Vec<[u32; 3]> = floor_faces
+                .iter()
+                .filter(|f| f.2 == fid)
+                .map(|f| fkey(f.1))
+                .collect();
+            old.sort_unstable();
+            old.dedup();
+            let new = self.retriangulate(s, fid, &old).map_err(fail)?;
+            patches.push(FacetPatch {
+                facet: fid,
+                old,
+                new,
+            });
+        }
+        // Each group's new tets, from the best apex found in its wedge.
+        let mut new_tets: Vec<[u32; 4]> = Vec::new();
+        let mut new_region: Vec<u32> = Vec::new();
+        let mut apexes = Vec::new();
+        for g in &groups {
+            let floor = self.group_floor(g, &patches).map_err(fail)?;
+            let link: Vec<[u32; 4]> = g.tets.iter().map(|&i| self.tets.verts(star[i])).collect();
+            let q = self
+                .best_apex(s, &link, &floor)
+                .ok_or_else(|| fail("no point of its wedge sees the whole group".into()))?;
+            let v = self.new_vertex(q)?;
+            apexes.push(v);
+            let reg = self.region_of(star[g.tets[0]]);
+            for t in &link {
+                new_tets.push(t.map(|x| if x == s { v } else { x }));
+                new_region.push(reg);
+            }
+            for f in &floor {
+                new_tets.push([v, f[0], f[1], f[2]]);
+                new_region.push(reg);
+            }
+        }
+        // Facet triangles with no group on one side are open on that side.
+        let open: Vec<[u32; 3]> = patches.iter().flat_map(|p| p.new.clone()).collect();
+        while self.tets.num_vertices() < self.pts.len() {
+            let p = self.pts[self.tets.num_vertices()];
+            self.tets.push_vertex(p);
+        }
+        let ids = self
+            .tets
+            .replace(&star, &new_tets, &open)
+            .map_err(|e| fail(format!("{e:?}")))?;
+        for (t, r) in ids.into_iter().zip(new_region) {
+            self.set_region(t, r);
+        }
+        moved.extend(apexes);
+        // The features forget s.
+        for p in &patches {
+            for f in &p.old {
+                self.feat.subfaces.remove(f);
+            }
+            for f in &p.new {
+                self.feat.subfaces.insert(fkey(*f), p.facet);
+            }
+        }
+        if let Some(e) = self.feat.split_edge.remove(&s) {
+            if let Some(ends) = self.feat.seg_adj.remove(&s) {
+                let [a, b] = [ends[0], ends[1]];
+                self.feat.subsegs.remove(&ekey(a, s));
+                self.feat.subsegs.remove(&ekey(s, b));
+                self.feat.subsegs.insert(ekey(a, b), e);
+                for (x, y) in [(a, b), (b, a)] {
+                    if let Some(l) = self.feat.seg_adj.get_mut(&x) {
+                        if let Some(w) = l.iter_mut().find(|w| **w == s) {
+                            *w = y;
+                        }
+                    }
+                }
+            }
+        }
+        self.feat.vert_facets.remove(&s);
+        if let Some(f) = self.feat.on_feature.get_mut(s as usize) {
+            *f = false;
+        }
+        Ok(())
+    }
+
+    /// The new triangles of facet `fid` around `s` (its subfaces `old` there), without `s`:
+    /// the polygon around `s`, split along the input edge through `s` when that edge runs
+    /// across the facet, clipped into triangles counter-clockwise in the facet's projection.
+    fn retriangulate(&self, s: u32, fid: u32, old: &[[u32; 3]]) -> Result<Vec<[u32; 3]>, String> {
+        let axis = self.feat.facets[fid as usize].axis;
+        let p2 = |v: u32| proj(self.pts[v as usize], axis);
+        // next[x] = y for each subface (s, x, y), counter-clockwise around s.
+        let mut next: Vec<(u32, u32)> = Vec::with_capacity(old.len());
+        for f in old {
+            let [x, y] = {
+                let mut o = f.iter().copied().filter(|&v| v != s);
+                [o.next().unwrap_or(NONE), o.next().unwrap_or(NONE)]
+            };
+            let o = orient2d(p2(s), p2(x), p2(y));
+            if o == 0.0 {
+                return Err(format!("subface {f:?} is flat in facet {fid}'s projection"));
+            }
+            next.push(if o > 0.0 { (x, y) } else { (y, x) });
+        }
+        let succ = |x: u32| next.iter().find(|e| e.0 == x).map(|e| e.1);
+        // A chain (s on the facet's border) starts where no edge arrives; a ring anywhere.
+        let first = next
+            .iter()
+            .map(|e| e.0)
+            .find(|&x| !next.iter().any(|e| e.1 == x))
+            .unwrap_or(next[0].0);
+        let mut poly = vec![first];
+        let mut cur = first;
+        while let Some(y) = succ(cur) {
+            if y == first {
+                break;
+            }
+            if poly.len() > old.len() {
+                return Err(format!(
+                    "the subfaces of facet {fid} around it are not a disk"
+                ));
+            }
+            poly.push(y);
+            cur = y;
+        }
+        let ring = succ(cur) == Some(first);
+        if poly.len() != old.len() + usize::from(!ring) {
+            return Err(format!(
+                "the subfaces of facet {fid} around it are not one disk"
+            ));
+        }
+        let ends = self
+            .feat
+            .seg_adj
+            .get(&s)
+            .filter(|_| self.feat.split_edge.contains_key(&s));
+        let mut polys = Vec::new();
+        match (ring, ends) {
+            // The input edge through s crosses the facet: keep its two pieces as one edge.
+            (true, Some(e)) => {
+                let i = poly.iter().position(|&v| v == e[0]);
+                let j = poly.iter().position(|&v| v == e[1]);
+                let (Some(i), Some(j)) = (i, j) else {
+                    return Err(format!("its input edge is not in facet {fid}'s polygon"));
+                };
+                let (i, j) = (i.min(j), i.max(j));
+                polys.push(poly[i..=j].to_vec());
+                let mut rest = poly[j..].to_vec();
+                rest.extend_from_slice(&poly[..=i]);
+                polys.push(rest);
+            }
+            (false, Some(e)) => {
+                let chain_ends = [poly[0], poly[poly.len() - 1]];
+                if !(chain_ends.contains(&e[0]) && chain_ends.contains(&e[1])) {
+                    return Err(format!("facet {fid} does not end at its input edge"));
+                }
+                polys.push(poly);
+            }
+            (false, None) => {
+                return Err(format!(
+                    "it is on the border of facet {fid} but on no input edge"
+                ))
+            }
+            (true, None) => polys.push(poly),
+        }
+        let mut tris = Vec::new();
+        for p in polys {
+            clip_ears(&p, &p2, &mut tris)
+                .ok_or_else(|| format!("facet {fid}'s polygon around it cannot be clipped"))?;
+        }
+        Ok(tris)
+    }
+
+    /// The new floor faces of group `g`, oriented as seen from inside the group: the new
+    /// triangles of every facet the group lies on, turned like the group's old floor faces.
+    fn group_floor(&self, g: &Group, patches: &[FacetPatch]) -> Result<Vec<[u32; 3]>, String> {
+        let mut out = Vec::new();
+        for p in patches {
+            let mine: Vec<&([u32; 3], u32)> = g.floor.iter().filter(|f| f.1 == p.facet).collect();
+            if mine.is_empty() {
+                continue;
+            }
+            if mine.len() != p.old.len() {
+                return Err(format!(
+                    "facet {} is only partly on one side of it",
+                    p.facet
+                ));
+            }
+            let axis = self.feat.facets[p.facet as usize].axis;
+            let p2 = |v: u32| proj(self.pts[v as usize], axis);
+            let side = |f: [u32; 3]| orient2d(p2(f[0]), p2(f[1]), p2(f[2])) > 0.0;
+            let up = side(mine[0].0);
+            if mine.iter().any(|f| side(f.0) != up) {
+                return Err(format!("facet {} folds around it", p.facet));
+            }
+            for &[a, b, c] in &p.new {
+                out.push(if up { [a, b, c] } else { [a, c, b] });
+            }
+        }
+        Ok(out)
+    }
+
+    /// The best point to re-cone group `g` of `s` from: its tets `link` with `s` replaced by
+    /// the point and the `floor` faces joined to it must all be positive, i.e. the point must
+    /// lie strictly inside the kernel of the group's region. Candidates: the kernel's
+    /// Chebyshev centre (the deepest point), points on the way from `s` to it (the kernel is
+    /// convex and `s` is on its border), and the centroid of the group's other vertices; the
+    /// valid one whose worst tet is best wins.
+    fn best_apex(&self, s: u32, link: &[[u32; 4]], floor: &[[u32; 3]]) -> Option<[f64; 3]> {
+        let p = |v: u32| self.pts[v as usize];
+        let ps = p(s);
+        // Each new tet's face opposite the apex, in FACE order: the apex must be below it.
+        let faces: Vec<[u32; 3]> = link
+            .iter()
+            .map(|t| {
+                let i = t.iter().position(|&v| v == s).unwrap_or(0);
+                FACE[i].map(|k| t[k])
+            })
+            .chain(floor.iter().copied())
+            .collect();
+        let score = |q: [f64; 3]| -> f64 {
+            let mut worst = f64::INFINITY;
+            for f in &faces {
+                let c = [p(f[0]), p(f[1]), p(f[2]), q];
+                if orient3d(c[0], c[1], c[2], c[3]) <= 0.0 {
+                    return 0.0;
+                }
+                worst = worst.min(crate::geometry::tet_shape(c));
+            }
+            worst
+        };
+        let mut best: Option<([f64; 3], f64)> = None;
+        let mut consider = |q: [f64; 3]| {
+            let sc = score(q);
+            if sc > 0.0 && best.map_or(true, |b| sc > b.1) {
+                best = Some((q, sc));
+            }
+            sc > 0.0
+        };
+        let rel = |v: u32| glam::DVec3::from(p(v)) - glam::DVec3::from(ps);
+        let mut reach = 0.0f64;
+        let planes: Vec<([f64; 3], f64)> = faces
+            .iter()
+            .map(|f| {
+                let [a, b, c] = f.map(rel);
+                let n = (b - a).cross(c - a);
+                reach = reach.max(a.abs().max(b.abs()).max(c.abs()).max_element());
+                // Below the face: n · (x - s) <= n · (a - s).
+                (n.to_array(), n.dot(a))
+            })
+            .collect();
+        if let Some((c, _)) = crate::lp::chebyshev_center(ps, &planes, reach) {
+            consider(c);
+            let mut found = 0;
+            let mut t = 0.5;
+            for _ in 0..60 {
+                let q = [0, 1, 2].map(|k| ps[k] + (c[k] - ps[k]) * t);
+                if consider(q) {
+                    found += 1;
+                    if found == 2 {
+                        break;
+                    }
+                }
+                t *= 0.5;
+            }
+        }
+        let mut others: Vec<u32> = link.iter().flatten().copied().filter(|&v| v != s).collect();
+        others.sort_unstable();
+        others.dedup();
+        let n = others.len().max(1) as f64;
+        consider([0, 1, 2].map(|k| others.iter().map(|&v| p(v)[k]).sum::<f64>() / n));
+        best.map(|b| b.0)
+    }
+
+    /// Removes the points made by [`Mesher::suppress`] where the star of one can be re-coned
+    /// from one of its own vertices (the one giving the best worst tet), a few rounds.
+    fn remove_moved_points(&mut self, moved: &[u32]) {
+        let mut left: Vec<u32> = moved.to_vec();
+        let mut star = Vec::new();
+        for _round in 0..4 {
+            let before = left.len();
+            left.retain(|&r| {
+                self.tets.star(r, &mut star);
+                !self.recone_from_link(r, &star)
+            });
+            if left.len() == before {
+                break;
+            }
+        }
+    }
+
+    /// Replaces the star of interior vertex `r` by the cone from the link vertex that gives
+    /// the best worst tet, if that tet is positive and not much worse than the star's worst.
+    /// Returns whether `r` is gone.
+    fn recone_from_link(&mut self, r: u32, star: &[u32]) -> bool {
+        if star.is_empty() {
+            return false;
+        }
+        let p = |v: u32| self.pts[v as usize];
+        let tets: Vec<[u32; 4]> = star.iter().map(|&t| self.tets.verts(t)).collect();
+        // The cone must not make the worst tet much worse than the star's.
+        let now = tets
+            .iter()
+            .map(|t| crate::geometry::tet_shape(t.map(p)))
+            .fold(f64::INFINITY, f64::min);
+        let mut cands: Vec<u32> = tets.iter().flatten().copied().filter(|&v| v != r).collect();
+        cands.sort_unstable();
+        cands.dedup();
+        let mut best: Option<(u32, f64)> = None;
+        for &w in &cands {
+            let mut worst = f64::INFINITY;
+            for t in tets.iter().filter(|t| !t.contains(&w)) {
+                let c = t.map(|v| if v == r { p(w) } else { p(v) });
+                if orient3d(c[0], c[1], c[2], c[3]) >= 0.0 {
+                    worst = 0.0;
+                    break;
+                }
+                worst = worst.min(crate::geometry::tet_shape(c));
+            }
+            if worst >= 0.5 * now && best.map_or(true, |b| worst > b.1) {
+                best = Some((w, worst));
+            }
+        }
+        let Some((w, _)) = best else {
+            return false;
+        };
+        let reg = self.region_of(star[0]);
+        let new: Vec<[u32; 4]> = tets
+            .iter()
+            .filter(|t| !t.contains(&w))
+            .map(|t| t.map(|v| if v == r { w } else { v }))
+            .collect();
+        match self.tets.replace(star, &new, &[]) {
+            Ok(ids) => {
+                for t in ids {
+                    self.set_region(t, reg);
+                }
+                true
+            }
+            Err(ReplaceError::Inverted(_) | ReplaceError::Mismatch(_)) => false,
+        }
+    }
+
+    /// Refines bad tet `t` (corners `c`) once the surface is kept, with its circumcenter, the
+    /// new vertex `m`; when that is refused and the tet is too large (volume bound or sizing
+    /// test), with its centroid, which lies inside it and is refused near the surface by the
+    /// same rules; otherwise the tet stays as it is (nothing may go on the surface).
+    pub(super) fn take_tet_walled(
+        &mut self,
+        t: u32,
+        c: [[f64; 3]; 4],
+        m: u32,
+    ) -> Result<(), Error> {
+        let mut short2 = f64::INFINITY;
+        for i in 0..4 {
+            for j in i + 1..4 {
+                short2 = short2.min(crate::geometry::dist2_3(c[i], c[j]));
+            }
+        }
+        if self.insert3d_walled(m, t, 0.25 * short2) {
+            self.steiner += 1;
+            self.counts.tet += 1;
+            return Ok(());
+        }
+        self.counts.tet_refused += 1;
+        if !self.too_large(t, c) {
+            self.pts.pop();
+            return Ok(());
+        }
+        self.pts[m as usize] = [0, 1, 2].map(|k| 0.25 * (c[0][k] + c[1][k] + c[2][k] + c[3][k]));
+        if self.insert3d_walled(m, t, 0.0625 * short2) {
+            self.steiner += 1;
+            self.counts.tet += 1;
+        } else {
+            self.pts.pop();
+        }
+        Ok(())
+    }
+
+    /// Inserts interior vertex `v` after the surface is kept: located by a walk from
+    /// `self.hint` that never crosses a subface, with a walled, star-shaped cavity. Refused
+    /// (nothing changes) when `v` is not reached that way, lies on a subface or is a vertex,
+    /// or when it comes too close to a subface or subsegment of its cavity (see
+    /// [`Mesher::encroaches_cavity`]): they cannot be split, and points ever closer to them
+    /// would only make ever flatter tets next to them.
+    ///
+    /// As the tetrahedralization is not Delaunay next to the surface, a point must also remove
+    /// the tet `bad` it is meant for, and keep at least `sqrt(gap2)` from every vertex of its
+    /// cavity: in a Delaunay mesh both hold by themselves (the circumsphere of a tet is
+    /// empty), and without them refinement can feed on itself there.
+    pub(super) fn insert3d_walled(&mut self, v: u32, bad: u32, gap2: f64) -> bool {
+        let p = self.pts[v as usize];
+        self.hint = bad;
+        let feat = &self.feat;
+        let wall = |f: [u32; 3]| feat.subface(f).is_some();
+        let Some(t) = self.tets.locate_walled(p, bad, &wall) else {
+            return false;
+        };
+        if !self.tets.find_cavity_walled(p, t, &wall) {
+            self.tets.cancel_cavity();
+            return false;
+        }
+        let crowded = || {
+            self.tets.cavity().iter().any(|&u| {
+                self.tets
+                    .verts(u)
+                    .iter()
+                    .any(|&w| crate::geometry::dist2_3(self.pts[w as usize], p) < gap2)
+            })
+        };
+        if !self.tets.in_cavity(bad) || crowded() || self.encroaches_cavity(p) {
+            self.tets.cancel_cavity();
+            return false;
+        }
+        let reg = self.region_of(bad);
+        while self.tets.num_vertices() <= v as usize {
+            let q = self.pts[self.tets.num_vertices()];
+            self.tets.push_vertex(q);
+        }
+        let new = self.tets.commit_cavity(v).to_vec();
+        if let Some(&t) = new.first() {
+            self.hint = t;
+        }
+        for t in new {
+            self.set_region(t, reg);
+            self.maybe_queue_tet(t);
+        }
+        true
+    }
+}
+
+impl Mesher<'_> {
+    /// Whether `p` lies strictly inside the lens ([`LENS_HEIGHT`]) of a subface or the
+    /// diametral ball of a subsegment of the pending walled cavity (on its boundary, or an
+    /// edge of its tets).
+    fn encroaches_cavity(&self, p: [f64; 3]) -> bool {
+        let at = |v: u32| self.pts[v as usize];
+        for &h in self.tets.cavity_boundary() {
+            let (t, f) = (h >> 2, (h & 3) as usize);
+            let vs = self.tets.verts(t);
+            let face = FACE[f].map(|k| vs[k]);
+            if self.feat.subface(face).is_some() {
+                let [a, b, c] = face.map(at);
+                if in_lens_tri(a, b, c, p, LENS_HEIGHT) {
+                    return true;
+                }
+            }
+        }
+        for &t in self.tets.cavity() {
+            let vs = self.tets.verts(t);
+            for (i, j) in super::EDGES {
+                if self.feat.subseg(vs[i], vs[j]).is_some()
+                    && in_diametral_ball_seg3(at(vs[i]), at(vs[j]), p)
+                {
+                    return true;
+                }
+            }
+        }
+        false
+    }
+}
+
+/// Clips the counter-clockwise simple polygon `poly` (vertices projected by `p2`) into
+/// triangles appended to `out`, counter-clockwise. An ear is a convex corner whose triangle
+/// holds no other polygon vertex (exact tests); among the ears one whose circumcircle holds no
+/// other polygon vertex is preferred (the Delaunay one, when the polygon has it). `None` when
+/// no ear is left (not a simple polygon in this projection).
+fn clip_ears(poly: &[u32], p2: &dyn Fn(u32) -> [f64; 2], out: &mut Vec<[u32; 3]>) -> Option<()> {
+    let mut ring = poly.to_vec();
+    while ring.len() > 3 {
+        let n = ring.len();
+        let mut any = None;
+        let mut delaunay = None;
+        for i in 0..n {
+            let (a, b, c) = (ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n]);
+            let (pa, pb, pc) = (p2(a), p2(b), p2(c));
+            if orient2d(pa, pb, pc) <= 0.0 {
+                continue;
+            }
+            let others = ring.iter().copied().filter(|&x| x != a && x != b && x != c);
+            let blocked = others.clone().any(|x| {
+                let q = p2(x);
+                orient2d(pa, pb, q) >= 0.0
+                    && orient2d(pb, pc, q) >= 0.0
+                    && orient2d(pc, pa, q) >= 0.0
+            });
+            if blocked {
+                continue;
+            }
+            any.get_or_insert(i);
+            if others.clone().all(|x| incircle(pa, pb, pc, p2(x)) <= 0.0) {
+                delaunay = Some(i);
+                break;
+            }
+        }
+        let i = delaunay.or(any)?;
+        out.push([ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n]]);
+        ring.remove(i);
+    }
+    let [a, b, c] = [ring[0], ring[1], ring[2]];
+    if orient2d(p2(a), p2(b), p2(c)) <= 0.0 {
+        return None;
+    }
+    out.push([a, b, c]);
+    Some(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::clip_ears;
+    use crate::predicates::orient2d;
+
+    #[test]
+    fn ear_clipping_triangulates_a_non_convex_polygon() {
+        // An L shape with a collinear run along its bottom.
+        let pts = [
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [2.0, 0.0],
+            [2.0, 1.0],
+            [1.0, 1.0],
+            [1.0, 2.0],
+            [0.0, 2.0],
+        ];
+        let poly: Vec<u32> = (0..pts.len() as u32).collect();
+        let mut out = Vec::new();
+        clip_ears(&poly, &|v| pts[v as usize], &mut out).unwrap();
+        assert_eq!(out.len(), pts.len() - 2);
+        let mut area = 0.0;
+        for t in &out {
+            let [a, b, c] = t.map(|v| pts[v as usize]);
+            assert!(
+                orient2d(a, b, c) > 0.0,
+                "triangle {t:?} is not counter-clockwise"
+            );
+            area += crate::geometry::area2(a, b, c) / 2.0;
+        }
+        assert!((area - 3.0).abs() < 1e-12, "area {area}");
+    }
+
+    #[test]
+    fn ear_clipping_refuses_a_clockwise_polygon() {
+        let pts = [[0.0, 0.0], [0.0, 1.0], [1.0, 1.0], [1.0, 0.0]];
+        let mut out = Vec::new();
+        assert!(clip_ears(&[0, 1, 2, 3], &|v| pts[v as usize], &mut out).is_none());
+    }
+}

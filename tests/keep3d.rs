@@ -1,0 +1,290 @@
+//! Keeping the input surface (`Options3::keep_surface`, TetGen's `-Y`) on surfaces that the
+//! Delaunay tetrahedralization of their vertices does not contain: twisted prisms, whose side
+//! quadrilaterals are split into triangles along either diagonal (Schönhardt's polyhedron, which
+//! has no tetrahedralization without an interior point, is the twisted triangle with every
+//! diagonal reflex), and boxes whose square sides are split along diagonals that cospherical
+//! ties may or may not pick. The conforming mesh puts Steiner points on such surfaces; `-Y`
+//! must take every one of them off again. Each mesh is judged by the independent checker of
+//! `common3d` (valid, every facet covered by subfaces with input vertices only, the volume of
+//! the polyhedron, nothing outside), and the boundary must be exactly the input triangles.
+
+mod common3d;
+
+use std::collections::BTreeSet;
+use std::f64::consts::TAU;
+
+use common3d::{mesh_and_check, Report3, Spec3, P3};
+use idmesh::{Facet, Options3, Plc, TetMesh};
+use proptest::prelude::*;
+
+fn config(cases: u32) -> ProptestConfig {
+    common3d::proptest_config(cases, 0x4b33_9e11)
+}
+
+fn tri(a: u32, b: u32, c: u32) -> Facet {
+    Facet {
+        polygons: vec![vec![a, b, c]],
+        holes: Vec::new(),
+        marker: 1,
+    }
+}
+
+/// The volume enclosed by outward triangles (divergence theorem).
+fn enclosed_volume(pts: &[P3], tris: &[[u32; 3]]) -> f64 {
+    tris.iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| pts[v as usize]);
+            (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                + a[2] * (b[0] * c[1] - b[1] * c[0]))
+                / 6.0
+        })
+        .sum()
+}
+
+/// A prism over a regular `n`-gon of radius 1 whose top (radius `top`, height `h`) is turned
+/// by `twist` radians; side `i` is split along the diagonal from bottom vertex `i` when bit `i`
+/// of `diagonals` is set, else from bottom vertex `i + 1`. Top and bottom are polygon facets
+/// (n >= 4) or triangles. Returns the PLC and its outward surface triangles (for the volume).
+fn twisted_prism(n: usize, twist: f64, top: f64, h: f64, diagonals: u32) -> (Plc, Vec<[u32; 3]>) {
+    let mut plc = Plc::default();
+    for i in 0..n {
+        let a = TAU * i as f64 / n as f64;
+        plc.points.push([a.cos(), a.sin(), 0.0]);
+    }
+    for i in 0..n {
+        let a = TAU * i as f64 / n as f64 + twist;
+        plc.points.push([top * a.cos(), top * a.sin(), h]);
+    }
+    let n32 = n as u32;
+    let (b, t) = (|i: usize| (i % n) as u32, |i: usize| n32 + (i % n) as u32);
+    let mut outward = Vec::new();
+    for i in 0..n {
+        // Bottom i, i+1 and top i, i+1 make a quadrilateral, counter-clockwise from outside.
+        let quad = [b(i), b(i + 1), t(i + 1), t(i)];
+        let pair = if diagonals >> i & 1 == 1 {
+            [[quad[0], quad[1], quad[2]], [quad[0], quad[2], quad[3]]]
+        } else {
+            [[quad[0], quad[1], quad[3]], [quad[1], quad[2], quad[3]]]
+        };
+        for f in pair {
+            plc.facets.push(tri(f[0], f[1], f[2]));
+            outward.push(f);
+        }
+    }
+    let bottom: Vec<u32> = (0..n).rev().map(b).collect();
+    let topv: Vec<u32> = (0..n).map(t).collect();
+    for poly in [bottom, topv] {
+        for k in 1..n - 1 {
+            outward.push([poly[0], poly[k], poly[k + 1]]);
+        }
+        plc.facets.push(Facet {
+            polygons: vec![poly],
+            holes: Vec::new(),
+            marker: 2,
+        });
+    }
+    (plc, outward)
+}
+
+/// Meshes keeping the surface and checks: the checker, the input triangles exactly among the
+/// boundary faces, every subface with input vertices only.
+fn keep_and_check(
+    plc: &Plc,
+    outward: &[[u32; 3]],
+    opts: &Options3,
+) -> Result<(TetMesh, Report3), String> {
+    let spec = Spec3 {
+        volume: Some(enclosed_volume(&plc.points, outward)),
+        check_quality: false,
+        tol: 64.0 * f64::EPSILON * 2.0,
+        timeout: std::time::Duration::from_secs(30),
+        ..Spec3::default()
+    };
+    let (mesh, rep) = mesh_and_check(plc, opts, &spec)?;
+    let key = |f: &[u32; 3]| {
+        let mut k = *f;
+        k.sort_unstable();
+        k
+    };
+    let faces: BTreeSet<[u32; 3]> = mesh.faces.iter().map(key).collect();
+    for f in plc.facets.iter().filter(|f| f.polygons[0].len() == 3) {
+        let p = &f.polygons[0];
+        let k = key(&[p[0], p[1], p[2]]);
+        if !faces.contains(&k) {
+            return Err(format!("input triangle {k:?} is not a face of the mesh"));
+        }
+    }
+    mesh.validate().map_err(|e| e.to_string())?;
+    Ok((mesh, rep))
+}
+
+fn keep() -> Options3 {
+    Options3 {
+        keep_surface: true,
+        max_steiner: Some(100_000),
+        ..Options3::default()
+    }
+}
+
+#[test]
+fn schonhardt_polyhedron_gets_an_interior_point_and_keeps_its_faces() {
+    // Twisted by 30 degrees with every side diagonal from bottom vertex i to top vertex i+1:
+    // all three diagonals are reflex edges, and no tetrahedralization without a new point
+    // exists (no tet on the polyhedron's own vertices lies inside it).
+    let (plc, outward) = twisted_prism(3, 30f64.to_radians(), 1.0, 1.0, 0b111);
+    let v = enclosed_volume(&plc.points, &outward);
+    assert!(v > 0.0, "the surface is outward ({v})");
+    let (mesh, rep) = keep_and_check(&plc, &outward, &keep()).unwrap();
+    assert!(
+        rep.steiner >= 1,
+        "Schönhardt's polyhedron has no tetrahedralization without a Steiner point"
+    );
+    assert_eq!(
+        mesh.faces.len(),
+        8,
+        "six side triangles and two end triangles"
+    );
+    // Its Steiner points are strictly inside, off every face.
+    for p in &mesh.vertices[plc.points.len()..] {
+        assert!(p[2] > 0.0 && p[2] < 1.0, "{p:?}");
+    }
+    // The conforming mesh of the same input needs Steiner points on the surface.
+    let conforming = idmesh::tetrahedralize(&plc, &Options3::default()).unwrap();
+    assert!(conforming
+        .faces
+        .iter()
+        .any(|f| f.iter().any(|&v| v as usize >= plc.points.len())));
+}
+
+#[test]
+fn schonhardt_polyhedron_refined_keeps_its_faces() {
+    let (plc, outward) = twisted_prism(3, 30f64.to_radians(), 1.0, 1.0, 0b111);
+    let o = Options3 {
+        radius_edge: Some(1.414),
+        max_volume: Some(0.005),
+        ..keep()
+    };
+    // Every point inside is close to some side (within half a circumradius of its plane):
+    // as in TetGen, nothing is refined next to the kept surface, and the mesh stays valid.
+    let (mesh, _) = keep_and_check(&plc, &outward, &o).unwrap();
+    assert_eq!(mesh.faces.len(), 8);
+}
+
+#[test]
+fn cube_split_along_tied_diagonals_keeps_its_triangles() {
+    // Two unit cubes sharing an edge (a non-manifold edge with four facets around it), every
+    // square side split along a diagonal: the Delaunay tetrahedralization of the corners has
+    // ties, and picks the other diagonal on some sides.
+    let mut plc = Plc::default();
+    let mut outward = Vec::new();
+    for (o, flip) in [([0.0, 0.0, 0.0], false), ([1.0, 1.0, 0.0], true)] {
+        let base = plc.points.len() as u32;
+        for z in [0.0, 1.0] {
+            for y in [0.0, 1.0] {
+                for x in [0.0, 1.0] {
+                    let p: P3 = [o[0] + x, o[1] + y, o[2] + z];
+                    let old = plc.points.iter().position(|q| *q == p);
+                    if old.is_none() {
+                        plc.points.push(p);
+                    }
+                }
+            }
+        }
+        let id = |x: usize, y: usize, z: usize| {
+            let p: P3 = [o[0] + x as f64, o[1] + y as f64, o[2] + z as f64];
+            plc.points.iter().position(|q| *q == p).unwrap() as u32
+        };
+        let _ = base;
+        // Sides as quadrilaterals counter-clockwise from outside.
+        let sides = [
+            [id(0, 0, 0), id(0, 1, 0), id(1, 1, 0), id(1, 0, 0)],
+            [id(0, 0, 1), id(1, 0, 1), id(1, 1, 1), id(0, 1, 1)],
+            [id(0, 0, 0), id(1, 0, 0), id(1, 0, 1), id(0, 0, 1)],
+            [id(0, 1, 0), id(0, 1, 1), id(1, 1, 1), id(1, 1, 0)],
+            [id(0, 0, 0), id(0, 0, 1), id(0, 1, 1), id(0, 1, 0)],
+            [id(1, 0, 0), id(1, 1, 0), id(1, 1, 1), id(1, 0, 1)],
+        ];
+        for (k, q) in sides.iter().enumerate() {
+            let pair = if (k % 2 == 0) != flip {
+                [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]
+            } else {
+                [[q[0], q[1], q[3]], [q[1], q[2], q[3]]]
+            };
+            for f in pair {
+                plc.facets.push(tri(f[0], f[1], f[2]));
+                outward.push(f);
+            }
+        }
+    }
+    assert_eq!(plc.points.len(), 14);
+    for opts in [
+        keep(),
+        Options3 {
+            radius_edge: Some(1.414),
+            max_volume: Some(0.01),
+            ..keep()
+        },
+    ] {
+        let (mesh, _) = keep_and_check(&plc, &outward, &opts).unwrap();
+        assert_eq!(
+            mesh.faces.len(),
+            24,
+            "the 24 input triangles, and nothing else"
+        );
+    }
+}
+
+#[test]
+fn a_free_segment_through_the_volume_is_refused_by_name() {
+    // A cube with an input edge inside, crowded by points near its middle so that the
+    // conforming mesh splits it: -Y cannot keep it whole without a point on it.
+    let mut plc = common3d::box_plc([0.0; 3], [1.0; 3]);
+    let a = plc.points.len() as u32;
+    plc.points.push([0.5, 0.5, 0.2]);
+    plc.points.push([0.5, 0.5, 0.8]);
+    plc.points.push([0.5, 0.45, 0.5]);
+    plc.points.push([0.5, 0.55, 0.5]);
+    plc.points.push([0.45, 0.5, 0.5]);
+    plc.segments.push([a, a + 1]);
+    // Without -Y the conforming mesh splits the segment...
+    let conforming = idmesh::tetrahedralize(&plc, &Options3::default()).unwrap();
+    assert!(
+        conforming.edges.len() > 13,
+        "{} subsegments",
+        conforming.edges.len()
+    );
+    // ...which -Y cannot take back: refused, naming the point.
+    match idmesh::tetrahedralize(&plc, &keep()) {
+        Err(idmesh::Error::Unsupported(msg)) => {
+            assert!(msg.contains("-Y") && msg.contains("free segment"), "{msg}")
+        }
+        other => panic!("expected Unsupported, got {other:?}"),
+    }
+}
+
+proptest! {
+    #![proptest_config(config(48))]
+
+    /// Twisted prisms over 3- to 7-gons, any side diagonals: the surface is
+    /// kept, the mesh valid and of the prism's volume; also with a quality and volume bound.
+    #[test]
+    fn twisted_prisms_keep_their_surface(
+        n in 3usize..=7,
+        twist_frac in 0.1..0.9f64,
+        top in 0.6..1.2f64,
+        h in 0.3..2.0f64,
+        diagonals in 0u32..128,
+        refine in any::<bool>(),
+    ) {
+        // Up to 180/n degrees the sides do not cross each other.
+        let twist = twist_frac * std::f64::consts::PI / n as f64;
+        let (plc, outward) = twisted_prism(n, twist, top, h, diagonals);
+        let v = enclosed_volume(&plc.points, &outward);
+        let opts = if refine {
+            Options3 { radius_edge: Some(1.414), max_volume: Some(v / 200.0), ..keep() }
+        } else {
+            keep()
+        };
+        keep_and_check(&plc, &outward, &opts).map_err(TestCaseError::fail)?;
+    }
+}

@@ -1347,10 +1347,10 @@ fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
 ///
 /// At a sharp vertex the judgement goes by the tet's shortest edge, which is what makes its
 /// radius-edge ratio large: only a short edge pinned by the small angle excuses the tet (one
-/// ending at the apex, one across the wedge between concentric shells, or one next to a thin
-/// wedge). A tet that merely touches a sharp vertex is not excused: exempting every such tet,
-/// however large, left whole inputs unrefined (u.off's triangulated surface has a sharp
-/// vertex almost everywhere).
+/// ending in the apex's protection ball, one across the wedge between concentric shells, or
+/// one next to a thin wedge). A tet that merely touches a sharp vertex is not excused:
+/// exempting every such tet, however large, left whole inputs unrefined (u.off's triangulated
+/// surface has a sharp vertex almost everywhere).
 #[derive(Default)]
 struct Sharp {
     /// Input vertices where two input edges meet below 60°.
@@ -1371,6 +1371,13 @@ struct Sharp {
     zones: Vec<Vec<Zone>>,
     /// Protection zones of thin wedges (see [`Wedge`]).
     wedges: Vec<Wedge>,
+    /// Protection balls of the sharp vertices: (apex, squared radius), the radius
+    /// [`BALL_FRACTION`] of the shorter edge of a sharp pair there (the largest such). Inside, the concentric shells
+    /// split the edges and tets with a shortest edge ending there are not refined (corner
+    /// lopping, as in Pav and Walkington's Delaunay refinement for small angles): below the
+    /// theoretical bound (a radius-edge ratio of 2) refinement next to a sharp vertex can
+    /// otherwise run towards it (u.off at -pq1.2: 4,000 tets within 0.02 of one 9-degree corner).
+    balls: Vec<([f64; 3], f64)>,
 }
 
 /// A thin wedge: two input edges from `apex` to `ends` meeting at an angle whose sine is below
@@ -1395,6 +1402,11 @@ struct Wedge {
 /// zone's scale the two edges are one feature. (About 3.6°: u.off's 0.07° wedges are thin,
 /// its 5.7° surface triangles are not.)
 const THIN_WEDGE: f64 = ZONE_FRACTION / 4.0;
+
+/// Radius of a sharp vertex's protection ball, relative to the shorter edge of the pair: half
+/// the zone fraction of edges. (A quarter left a tenth of u.off's tets above -pq1.2's bound, an
+/// eighth 4.4 % as TetGen does; a sixteenth let u.off's corners take 1.4x TetGen's tets.)
+const BALL_FRACTION: f64 = ZONE_FRACTION / 2.0;
 
 /// Relative tolerance of "equal distances from the apex" for points on the two edges of a
 /// sharp vertex: shell points sit at the same power-of-two distance up to rounding.
@@ -1433,6 +1445,7 @@ impl Sharp {
         let p = |v: u32| DVec3::from(plc.points[v as usize]);
         let small = 60f64.to_radians().cos();
         let mut sharp = Sharp::default();
+        let mut ball_r2: crate::hash::FastMap<u32, f64> = Default::default();
         for (&v, nbrs) in &feat.seg_adj {
             if (v as usize) >= plc.points.len() {
                 continue;
@@ -1461,6 +1474,9 @@ impl Sharp {
                         if (1.0 - cos * cos).max(0.0).sqrt() < THIN_WEDGE {
                             sharp.wedges.push(Wedge::new(p(v), p(a), p(b)));
                         }
+                        let r = BALL_FRACTION * (p(a) - p(v)).length().min((p(b) - p(v)).length());
+                        let ball = ball_r2.entry(v).or_insert(0.0);
+                        *ball = ball.max(r * r);
                     }
                 }
             }
@@ -1469,6 +1485,12 @@ impl Sharp {
         // on whose side the facet lies next to the edge's midpoint (both for an edge inside
         // the facet, none for a degenerate one). Taking, say, the direction towards the
         // farthest facet vertex instead would cross a hole of a ring facet.
+        let mut balls: Vec<(u32, f64)> = ball_r2.into_iter().collect();
+        balls.sort_unstable_by_key(|b| b.0);
+        sharp.balls = balls
+            .into_iter()
+            .map(|(v, r2)| (p(v).to_array(), r2))
+            .collect();
         let inward = |f: u32, a: u32, b: u32| -> Vec<DVec3> {
             let fi = &feat.facets[f as usize];
             let [u, v, w] = fi.plane.map(p);
@@ -1544,6 +1566,13 @@ impl Sharp {
         })
     }
 
+    /// Whether `q` lies in the protection ball of a sharp vertex.
+    fn in_ball(&self, q: [f64; 3]) -> bool {
+        self.balls
+            .iter()
+            .any(|&(c, r2)| crate::geometry::dist2_3(q, c) < r2)
+    }
+
     /// Whether `q` lies in the protection zone of a thin wedge.
     fn in_wedge(&self, q: [f64; 3]) -> bool {
         use crate::geometry::dist2_point_segment3 as d2;
@@ -1568,8 +1597,8 @@ impl Sharp {
     }
 
     /// Whether the shortest edge of a tet with these vertices (which decides its radius-edge
-    /// ratio) is pinned by a sharp vertex: it ends at the apex, it joins points of the apex's
-    /// two edges on one concentric shell, or it has an end in a thin wedge's zone. Refining
+    /// ratio) is pinned by a sharp vertex: it has an end in the apex's protection ball or in a
+    /// thin wedge's zone, or it joins points of the apex's two edges on one concentric shell. Refining
     /// such a tet would only make a shorter edge of the same kind.
     fn short_edge_pinned(&self, vs: [u32; 4], feat: &Features, pts: &[[f64; 3]]) -> bool {
         if self.vertices.is_empty() {
@@ -1585,10 +1614,7 @@ impl Sharp {
             .unwrap_or((0, 1));
         let (u, w) = (vs[i], vs[j]);
         let (pu, pw) = (pts[u as usize], pts[w as usize]);
-        if self.vertices.contains(&u) || self.vertices.contains(&w) {
-            return true;
-        }
-        if self.in_wedge(pu) || self.in_wedge(pw) {
+        if self.in_ball(pu) || self.in_ball(pw) || self.in_wedge(pu) || self.in_wedge(pw) {
             return true;
         }
         match (feat.split_edge.get(&u), feat.split_edge.get(&w)) {

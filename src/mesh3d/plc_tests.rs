@@ -355,3 +355,47 @@ fn thin_wedge_is_protected_not_resolved() {
     }
     assert!(away > 500, "{away} tets away from the wedge");
 }
+
+#[test]
+fn merged_coplanar_triangles_mesh_like_the_polygon() {
+    // The unit cube with each face given as two triangles: merged, the diagonals are not
+    // input edges (no subsegment on them) and the mesh meets the bound everywhere, as for the
+    // cube of quadrilaterals; unmerged, each diagonal is covered by subsegments.
+    let quads = box_plc([0.0; 3], [1.0; 3]);
+    let mut tris = Plc {
+        points: quads.points.clone(),
+        ..Plc::default()
+    };
+    for f in &quads.facets {
+        let q = &f.polygons[0];
+        for t in [[q[0], q[1], q[2]], [q[0], q[2], q[3]]] {
+            tris.facets.push(Facet {
+                polygons: vec![t.to_vec()],
+                holes: vec![],
+                marker: f.marker,
+            });
+        }
+    }
+    let opts = Options3 {
+        radius_edge: Some(1.2),
+        merge_coplanar: true,
+        ..Options3::default()
+    };
+    let mesh = tetrahedralize(&tris, &opts).unwrap();
+    check_mesh(&tris, &mesh);
+    assert!(mesh.stats().max_radius_edge <= 1.2 * (1.0 + 1e-9));
+    let on_diagonal = |e: &[u32; 2]| {
+        let [a, b] = e.map(|v| mesh.vertices[v as usize]);
+        // A cube edge keeps two coordinates; a face diagonal only one.
+        (0..3).filter(|&k| a[k] == b[k]).count() < 2
+    };
+    assert!(!mesh.edges.is_empty());
+    assert!(!mesh.edges.iter().any(on_diagonal));
+    let unmerged = Options3 {
+        merge_coplanar: false,
+        ..opts
+    };
+    let mesh = tetrahedralize(&tris, &unmerged).unwrap();
+    check_mesh(&tris, &mesh);
+    assert!(mesh.edges.iter().any(on_diagonal));
+}

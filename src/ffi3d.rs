@@ -513,6 +513,7 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
             max_steiner: u64::try_from(o.max_steiner).ok(),
             sizing: m.opts.sizing.take(),
             keep_surface: o.keep_surface != 0,
+            merge_coplanar: false,
             verbose: o.verbose != 0,
         };
         m.mesh = None;

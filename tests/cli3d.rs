@@ -482,3 +482,48 @@ fn keep_surface_adds_points_only_inside_and_keeps_every_facet_whole() {
     // (5 outer, 6 inner), 8 around the window, 2 for the lid.
     assert_eq!(face.items.len(), 2 * 5 + 2 * 6 + 8 + 2, "{:?}", face.items);
 }
+
+/// The unit cube as an OFF surface of twelve triangles (two per face, split along a diagonal).
+const CUBE_TRIANGLES: &str = "OFF
+8 12 0
+0 0 0
+1 0 0
+1 1 0
+0 1 0
+0 0 1
+1 0 1
+1 1 1
+0 1 1
+3 0 2 1
+3 0 3 2
+3 4 5 6
+3 4 6 7
+3 0 1 5
+3 0 5 4
+3 1 2 6
+3 1 6 5
+3 2 3 7
+3 2 7 6
+3 3 0 4
+3 3 4 7
+";
+
+#[test]
+fn coplanar_triangles_are_merged_unless_minus_m() {
+    // As in TetGen, the two triangles of each face are one facet: no subsegment lies on a
+    // face diagonal (a cube edge keeps two coordinates, a diagonal only one). With -M each
+    // triangle is a facet and its diagonal is covered by subsegments.
+    for (switches, diagonals) in [("-pq1.2eQ", false), ("-pq1.2eMQ", true)] {
+        let d = TempDir::new(&format!("cubetri{switches}"));
+        d.write("c.off", CUBE_TRIANGLES);
+        ok(&idmesh(&d.0, &[switches, "c.off"]));
+        let m = read_mesh(&d, "c.1", 0);
+        assert!(close(m.volume(), 1.0), "{switches}: volume {}", m.volume());
+        let edges = parse_edge(&d.read("c.1.edge"), "edge", 0, m.points.len()).unwrap();
+        let on_diagonal = edges.items.iter().any(|e| {
+            let [a, b] = e.map(|v| m.points[v as usize]);
+            (0..3).filter(|&k| a[k] == b[k]).count() < 2
+        });
+        assert_eq!(on_diagonal, diagonals, "{switches}");
+    }
+}

@@ -108,6 +108,45 @@ impl Outline {
         }
         inside
     }
+
+    /// [`Outline::contains`] for the centroid of triangle `t`, exactly: the rounded centroid
+    /// of a sliver (three nearly collinear loop vertices) can round across the loop edge next
+    /// to it. When the rounded centroid is strictly inside the triangle it stands for the true
+    /// one; otherwise the parity is computed on the exact centroid (a + b + c) / 3.
+    pub(crate) fn contains_centroid(&self, t: [[f64; 2]; 3]) -> bool {
+        let q = [0, 1].map(|k| (t[0][k] + t[1][k] + t[2][k]) / 3.0);
+        let o = orient2d(t[0], t[1], t[2]);
+        let strictly_in = (0..3).all(|i| orient2d(t[i], t[(i + 1) % 3], q) * o > 0.0);
+        if strictly_in {
+            return self.contains(q);
+        }
+        use crate::exact::DynExpansion as X;
+        // 3 q - 3 x, coordinate k, exactly.
+        let rel = |k: usize, x: f64| {
+            X::from_f64(t[0][k])
+                .add(&X::from_f64(t[1][k]))
+                .add(&X::from_f64(t[2][k]))
+                .sub(&X::from_product(3.0, x))
+        };
+        let mut inside = false;
+        for lp in &self.loops {
+            let n = lp.len();
+            for i in 0..n {
+                let (u, w) = (lp[i], lp[(i + 1) % n]);
+                if (rel(1, u[1]).sign() < 0) != (rel(1, w[1]).sign() < 0) {
+                    let (lo, hi) = if u[1] < w[1] { (u, w) } else { (w, u) };
+                    // 3 orient2d(lo, hi, q).
+                    let o3 = X::from_diff(hi[0], lo[0])
+                        .mul(&rel(1, lo[1]))
+                        .sub(&X::from_diff(hi[1], lo[1]).mul(&rel(0, lo[0])));
+                    if o3.sign() > 0 {
+                        inside = !inside;
+                    }
+                }
+            }
+        }
+        inside
+    }
 }
 
 /// The exact sign of `cx (p.x - a.x) + cy (p.y - a.y)` for small integers `cx`, `cy`.
@@ -414,9 +453,7 @@ impl FacetMesh {
         if self.outline.convex {
             return true;
         }
-        let [a, b, c] = v.map(|x| self.pp(x, pts));
-        let q = [(a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0];
-        self.outline.contains(q)
+        self.outline.contains_centroid(v.map(|x| self.pp(x, pts)))
     }
 
     fn locate(&self, p: [f64; 3], pts: &[[f64; 3]]) -> Option<u32> {
@@ -1138,5 +1175,37 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn sliver_of_a_reflex_boundary_vertex_is_outside() {
+        // fandisk.off's boundary vertices 6267, 6268, 6269 (projected on x = -0.207) are nearly
+        // collinear and 6268 is reflex: the sliver between them lies outside the facet, but
+        // its rounded centroid falls inside for some vertex orders (then it was taken for a
+        // subface that no split could put into the 3D mesh: "too small to split").
+        let (a, b, c) = ([0.15655, 0.296], [0.17635, 0.2954], [0.19615, 0.2948]);
+        // The loop runs a -> b -> c and closes on the side b bulges towards (b reflex).
+        let loops = vec![vec![a, b, c, [0.17635, 0.5]]];
+        let outline = Outline {
+            loops,
+            convex: false,
+        };
+        let orders = [
+            [a, b, c],
+            [a, c, b],
+            [b, a, c],
+            [b, c, a],
+            [c, a, b],
+            [c, b, a],
+        ];
+        let mut rounded_inside = 0;
+        for t in orders {
+            assert!(!outline.contains_centroid(t), "{t:?} taken for inside");
+            let q = [0, 1].map(|k| (t[0][k] + t[1][k] + t[2][k]) / 3.0);
+            rounded_inside += outline.contains(q) as usize;
+        }
+        assert!(rounded_inside > 0, "the rounded centroids are all outside");
+        // A fat triangle inside is inside (the fast path).
+        assert!(outline.contains_centroid([[0.16, 0.33], [0.18, 0.33], [0.17, 0.36]]));
     }
 }

@@ -6,6 +6,7 @@
 //! until each appears in the 3D mesh (work queue of Definition 4.1); classify exterior, holes
 //! and regions by flooding up to facets; then remove skinny and oversized tetrahedra (Fig. 9).
 
+mod coplanar;
 mod delaunay;
 mod facet_mesh;
 mod features;
@@ -69,6 +70,12 @@ pub struct Options3 {
     /// be met next to the boundary. A free input edge inside the volume (on no facet) cannot
     /// be kept whole: meshing then fails naming the point. Default: `false`.
     pub keep_surface: bool,
+    /// Merge exactly coplanar neighbouring facets with the same marker into one facet before
+    /// meshing, as TetGen does unless given `-M`: the edges between them (a triangulated
+    /// surface's diagonals across its flat faces) are then not input edges, need not appear in
+    /// the mesh and make no small angles; the output's boundary faces cover each merged facet
+    /// but not necessarily the input triangles. Ignored with `keep_surface`. Default: `false`.
+    pub merge_coplanar: bool,
     /// Print progress lines to standard error during long runs. Default: `false`.
     pub verbose: bool,
 }
@@ -83,6 +90,7 @@ impl fmt::Debug for Options3 {
             .field("max_steiner", &self.max_steiner)
             .field("sizing", &self.sizing.as_ref().map(|_| "<fn>"))
             .field("keep_surface", &self.keep_surface)
+            .field("merge_coplanar", &self.merge_coplanar)
             .field("verbose", &self.verbose)
             .finish()
     }
@@ -97,7 +105,10 @@ pub fn tetrahedralize(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
     guard(|| {
         crate::input3d::check_plc(plc)?;
         check_options(opts)?;
-        plc::mesh_plc(plc, opts)
+        let merged = (opts.merge_coplanar && !opts.keep_surface)
+            .then(|| coplanar::merge_coplanar_facets(plc))
+            .flatten();
+        plc::mesh_plc(merged.as_ref().unwrap_or(plc), opts)
     })
 }
 

@@ -1298,8 +1298,15 @@ fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
 
 /// Input angles below 60°: between two input edges at a vertex, and between two facets along
 /// an edge (dihedral). Radius-edge refinement next to them would never end (each split makes a
-/// smaller bad tet between the two features), so tets touching them are exempt from the bound,
-/// as Triangle and the paper (§6) do for small 2D angles.
+/// smaller bad tet between the two features), so tets whose badness they cause are exempt from
+/// the bound, as Triangle and the paper (§6) do for small 2D angles.
+///
+/// At a sharp vertex the judgement goes by the tet's shortest edge, which is what makes its
+/// radius-edge ratio large: only a short edge pinned by the small angle excuses the tet (one
+/// ending in the apex's protection ball, one across the wedge between concentric shells, or
+/// one next to a thin wedge). A tet that merely touches a sharp vertex is not excused:
+/// exempting every such tet, however large, left whole inputs unrefined (u.off's triangulated
+/// surface has a sharp vertex almost everywhere).
 #[derive(Default)]
 struct Sharp {
     /// Input vertices where two input edges meet below 60°.
@@ -1308,16 +1315,73 @@ struct Sharp {
     edges: crate::hash::FastSet<u32>,
     /// Facet pairs (smaller id first) meeting below 60° along an edge or at a vertex.
     facet_pairs: crate::hash::FastSet<(u32, u32)>,
-    /// Input edge pairs (smaller id first) meeting at a sharp vertex: a tet with vertices on
-    /// both spans the narrow wedge between them, however far from the apex (Triangle's rule
-    /// for a skinny triangle whose short edge faces a small input angle).
-    seg_pairs: crate::hash::FastSet<(u32, u32)>,
+    /// Input edge pairs (smaller id first) meeting at a sharp vertex, with the apex's position:
+    /// a tet whose shortest edge joins points of the two at equal distances from the apex (the
+    /// concentric shells of [`Mesher::split_point`]) spans the wedge, and refining it would
+    /// only move the problem closer to the apex (Triangle's rule for a skinny triangle whose
+    /// short edge faces a small input angle).
+    seg_pairs: crate::hash::FastMap<(u32, u32), [f64; 3]>,
     /// Per facet: protection zones of the sharp edges on it. Tets with a vertex on the facet
     /// inside a zone are exempt: next to a sharp edge the two facets' refinement feeds itself
-    /// (each split near one facet encroaches the other), ever closer to the edge. (Sharp
-    /// vertices need no zone: the tets touching them and those crossing the wedge between
-    /// their edges are exempt.)
+    /// (each split near one facet encroaches the other), ever closer to the edge.
     zones: Vec<Vec<Zone>>,
+    /// Protection zones of thin wedges (see [`Wedge`]).
+    wedges: Vec<Wedge>,
+    /// Protection balls of the sharp vertices: (apex, squared radius), the radius
+    /// [`BALL_FRACTION`] of the shorter edge of a sharp pair there (the largest such). Inside, the concentric shells
+    /// split the edges and tets with a shortest edge ending there are not refined (corner
+    /// lopping, as in Pav and Walkington's Delaunay refinement for small angles): below the
+    /// theoretical bound (a radius-edge ratio of 2) refinement next to a sharp vertex can
+    /// otherwise run towards it (u.off at -pq1.2: 4,000 tets within 0.02 of one 9-degree corner).
+    balls: Vec<([f64; 3], f64)>,
+}
+
+/// A thin wedge: two input edges from `apex` to `ends` meeting at an angle whose sine is below
+/// [`THIN_WEDGE`], with its protection zone, the points within `sqrt(r2)` of both edges
+/// (bounding box `lo`, `hi`). The two edges run side by side along their whole length (u.off's
+/// 0.07° needle triangles: two edges 0.04 long never more than 5e-5 apart), so shells near
+/// the apex do not help: everywhere along them, tets join points on both and are as short as
+/// the gap, and refinement would resolve the gap (at about 1/angle tets per doubling of the
+/// distance from the apex, 50,000 tets for u.off) where TetGen just leaves such tets alone. A
+/// tet whose shortest edge has an endpoint in the zone is exempt.
+#[derive(Clone, Copy)]
+struct Wedge {
+    apex: [f64; 3],
+    ends: [[f64; 3]; 2],
+    r2: f64,
+    lo: [f64; 3],
+    hi: [f64; 3],
+}
+
+/// Sine of the largest angle of a thin wedge: its widest gap (at the end of the shorter edge)
+/// is below a quarter of its zone radius ([`ZONE_FRACTION`] of that edge's length), so at the
+/// zone's scale the two edges are one feature. (About 3.6°: u.off's 0.07° wedges are thin,
+/// its 5.7° surface triangles are not.)
+const THIN_WEDGE: f64 = ZONE_FRACTION / 4.0;
+
+/// Radius of a sharp vertex's protection ball, relative to the shorter edge of the pair: half
+/// the zone fraction of edges. (A quarter left a tenth of u.off's tets above -pq1.2's bound, an
+/// eighth 4.4 % as TetGen does; a sixteenth let u.off's corners take 1.4x TetGen's tets.)
+const BALL_FRACTION: f64 = ZONE_FRACTION / 2.0;
+
+/// Relative tolerance of "equal distances from the apex" for points on the two edges of a
+/// sharp vertex: shell points sit at the same power-of-two distance up to rounding.
+const SHELL_TOLERANCE: f64 = 1e-3;
+
+impl Wedge {
+    /// The wedge at `apex` between the edges to `a` and `b`, with its zone.
+    fn new(apex: glam::DVec3, a: glam::DVec3, b: glam::DVec3) -> Wedge {
+        let r = ZONE_FRACTION * (a - apex).length().min((b - apex).length());
+        let lo = apex.min(a).min(b) - glam::DVec3::splat(r);
+        let hi = apex.max(a).max(b) + glam::DVec3::splat(r);
+        Wedge {
+            apex: apex.to_array(),
+            ends: [a.to_array(), b.to_array()],
+            r2: r * r,
+            lo: lo.to_array(),
+            hi: hi.to_array(),
+        }
+    }
 }
 
 /// A protection zone: the points within `sqrt(r2)` of the segment `a b`.
@@ -1337,6 +1401,7 @@ impl Sharp {
         let p = |v: u32| DVec3::from(plc.points[v as usize]);
         let small = 60f64.to_radians().cos();
         let mut sharp = Sharp::default();
+        let mut ball_r2: crate::hash::FastMap<u32, f64> = Default::default();
         for (&v, nbrs) in &feat.seg_adj {
             if (v as usize) >= plc.points.len() {
                 continue;
@@ -1358,8 +1423,16 @@ impl Sharp {
                         sharp.vertices.insert(v);
                         let edge = |w: u32| feat.subsegs.get(&super::features::ekey(v, w));
                         if let (Some(&e1), Some(&e2)) = (edge(a), edge(b)) {
-                            sharp.seg_pairs.insert((e1.min(e2), e1.max(e2)));
+                            sharp
+                                .seg_pairs
+                                .insert((e1.min(e2), e1.max(e2)), p(v).to_array());
                         }
+                        if (1.0 - cos * cos).max(0.0).sqrt() < THIN_WEDGE {
+                            sharp.wedges.push(Wedge::new(p(v), p(a), p(b)));
+                        }
+                        let r = BALL_FRACTION * (p(a) - p(v)).length().min((p(b) - p(v)).length());
+                        let ball = ball_r2.entry(v).or_insert(0.0);
+                        *ball = ball.max(r * r);
                     }
                 }
             }
@@ -1368,6 +1441,12 @@ impl Sharp {
         // on whose side the facet lies next to the edge's midpoint (both for an edge inside
         // the facet, none for a degenerate one). Taking, say, the direction towards the
         // farthest facet vertex instead would cross a hole of a ring facet.
+        let mut balls: Vec<(u32, f64)> = ball_r2.into_iter().collect();
+        balls.sort_unstable_by_key(|b| b.0);
+        sharp.balls = balls
+            .into_iter()
+            .map(|(v, r2)| (p(v).to_array(), r2))
+            .collect();
         let inward = |f: u32, a: u32, b: u32| -> Vec<DVec3> {
             let fi = &feat.facets[f as usize];
             let [u, v, w] = fi.plane.map(p);
@@ -1443,20 +1522,78 @@ impl Sharp {
         })
     }
 
+    /// Whether `q` lies in the protection ball of a sharp vertex.
+    fn in_ball(&self, q: [f64; 3]) -> bool {
+        self.balls
+            .iter()
+            .any(|&(c, r2)| crate::geometry::dist2_3(q, c) < r2)
+    }
+
+    /// Whether `q` lies in the protection zone of a thin wedge.
+    fn in_wedge(&self, q: [f64; 3]) -> bool {
+        use crate::geometry::dist2_point_segment3 as d2;
+        self.wedges.iter().any(|w| {
+            (0..3).all(|k| w.lo[k] <= q[k] && q[k] <= w.hi[k])
+                && d2(q, w.apex, w.ends[0]) < w.r2
+                && d2(q, w.apex, w.ends[1]) < w.r2
+        })
+    }
+
+    /// Whether the points `p`, `q` on the two edges of the sharp vertex pair `pair` are at the
+    /// same distance from its apex (up to [`SHELL_TOLERANCE`]).
+    fn on_one_shell(&self, pair: (u32, u32), p: [f64; 3], q: [f64; 3]) -> bool {
+        let Some(&a) = self.seg_pairs.get(&pair) else {
+            return false;
+        };
+        let (dp, dq) = (
+            crate::geometry::dist2_3(a, p).sqrt(),
+            crate::geometry::dist2_3(a, q).sqrt(),
+        );
+        (dp - dq).abs() <= SHELL_TOLERANCE * dp.max(dq)
+    }
+
+    /// Whether the shortest edge of a tet with these vertices (which decides its radius-edge
+    /// ratio) is pinned by a sharp vertex: it has an end in the apex's protection ball or in a
+    /// thin wedge's zone, or it joins points of the apex's two edges on one concentric shell. Refining
+    /// such a tet would only make a shorter edge of the same kind.
+    fn short_edge_pinned(&self, vs: [u32; 4], feat: &Features, pts: &[[f64; 3]]) -> bool {
+        if self.vertices.is_empty() {
+            return false;
+        }
+        let len2 = |(a, b): (usize, usize)| {
+            crate::geometry::dist2_3(pts[vs[a] as usize], pts[vs[b] as usize])
+        };
+        let (i, j) = EDGES
+            .iter()
+            .copied()
+            .min_by(|&x, &y| len2(x).total_cmp(&len2(y)))
+            .unwrap_or((0, 1));
+        let (u, w) = (vs[i], vs[j]);
+        let (pu, pw) = (pts[u as usize], pts[w as usize]);
+        if self.in_ball(pu) || self.in_ball(pw) || self.in_wedge(pu) || self.in_wedge(pw) {
+            return true;
+        }
+        match (feat.split_edge.get(&u), feat.split_edge.get(&w)) {
+            (Some(&e1), Some(&e2)) if e1 != e2 => {
+                self.on_one_shell((e1.min(e2), e1.max(e2)), pu, pw)
+            }
+            _ => false,
+        }
+    }
+
     /// Whether the input has no small angle at all.
     fn is_empty(&self) -> bool {
         self.vertices.is_empty() && self.edges.is_empty() && self.facet_pairs.is_empty()
     }
 
-    /// Whether a tet with these vertices touches a small input angle.
+    /// Whether a small input angle excuses a tet with these vertices from the radius-edge
+    /// bound: it has a vertex next to a sharp edge, its shortest edge is pinned by a sharp
+    /// vertex, or it spans two facets meeting at a sharp edge.
     fn exempts(&self, vs: [u32; 4], feat: &Features, pts: &[[f64; 3]]) -> bool {
         if self.vertices.is_empty() && self.edges.is_empty() {
             return false;
         }
         for &v in &vs {
-            if self.vertices.contains(&v) {
-                return true;
-            }
             if let Some(fs) = feat.vert_facets.get(&v) {
                 if fs.iter().any(|&f| self.in_zone(f, pts[v as usize])) {
                     return true;
@@ -1468,25 +1605,8 @@ impl Sharp {
                 }
             }
         }
-        if !self.seg_pairs.is_empty() {
-            // The shortest edge decides the ratio: exempt when it crosses such a wedge.
-            let (i, j) = EDGES
-                .iter()
-                .copied()
-                .min_by(|&(a, b), &(c, d)| {
-                    let l = |x: usize, y: usize| {
-                        crate::geometry::dist2_3(pts[vs[x] as usize], pts[vs[y] as usize])
-                    };
-                    l(a, b).total_cmp(&l(c, d))
-                })
-                .unwrap_or((0, 1));
-            if let (Some(&e1), Some(&e2)) =
-                (feat.split_edge.get(&vs[i]), feat.split_edge.get(&vs[j]))
-            {
-                if e1 != e2 && self.seg_pairs.contains(&(e1.min(e2), e1.max(e2))) {
-                    return true;
-                }
-            }
+        if self.short_edge_pinned(vs, feat, pts) {
+            return true;
         }
         if self.facet_pairs.is_empty() {
             return false;

@@ -266,3 +266,136 @@ fn spike_facet_points_stay_inside_their_facets() {
     let want = mesh.volume();
     assert!(want > 0.0 && mesh.tets.len() > 100);
 }
+
+/// A unit cube whose top face is split into a needle triangle (0.057° at the corner
+/// (0, 0, 1)) and the rest: the input edges (0,0,1)-(1,0,1) and (0,0,1)-(1,0.001,1) run side
+/// by side, never more than 0.001 apart (the thin wedges of u.off). The facets are not merged.
+fn thin_wedge_cube() -> Plc {
+    let mut plc = Plc {
+        points: vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [1.0, 0.0, 1.0],
+            [1.0, 1.0, 1.0],
+            [0.0, 1.0, 1.0],
+            [1.0, 0.001, 1.0],
+        ],
+        ..Plc::default()
+    };
+    let loops: [&[u32]; 7] = [
+        &[0, 1, 2, 3],
+        &[0, 1, 5, 4],
+        &[1, 2, 6, 8, 5],
+        &[2, 3, 7, 6],
+        &[3, 0, 4, 7],
+        &[4, 5, 8],
+        &[4, 8, 6, 7],
+    ];
+    for l in loops {
+        plc.facets.push(Facet {
+            polygons: vec![l.to_vec()],
+            holes: vec![],
+            marker: 1,
+        });
+    }
+    plc
+}
+
+/// The shortest edge of a tet, as its two corners.
+fn shortest_edge(c: [[f64; 3]; 4]) -> [[f64; 3]; 2] {
+    let mut best = (f64::INFINITY, [c[0], c[1]]);
+    for i in 0..4 {
+        for j in i + 1..4 {
+            let l = crate::geometry::dist2_3(c[i], c[j]);
+            if l < best.0 {
+                best = (l, [c[i], c[j]]);
+            }
+        }
+    }
+    best.1
+}
+
+#[test]
+fn thin_wedge_is_protected_not_resolved() {
+    // Was: refinement resolved the 0.001 gap along the whole wedge (2,573 tets at 1.2 for a
+    // cube). The tets pinned by the wedge are exempt now; the rest meets the bound.
+    let plc = thin_wedge_cube();
+    let opts = Options3 {
+        radius_edge: Some(1.2),
+        ..Options3::default()
+    };
+    let mesh = tetrahedralize(&plc, &opts).unwrap();
+    check_mesh(&plc, &mesh);
+    assert!(mesh.complete);
+    assert!(mesh.tets.len() < 100, "{} tets", mesh.tets.len());
+    // With a volume bound: refined everywhere, and every tet whose shortest edge is away from
+    // the wedge (farther than its zone, a quarter of the edge length) meets the bound.
+    let opts = Options3 {
+        radius_edge: Some(1.2),
+        max_volume: Some(0.001),
+        ..Options3::default()
+    };
+    let mesh = tetrahedralize(&plc, &opts).unwrap();
+    check_mesh(&plc, &mesh);
+    assert!(mesh.tets.len() > 1000);
+    let mut away = 0;
+    for t in 0..mesh.tets.len() {
+        let c = mesh.corners(t);
+        let far = shortest_edge(c).iter().all(|&p| {
+            crate::geometry::dist2_point_segment3(p, [0.0, 0.0, 1.0], [1.0, 0.0, 1.0]) > 0.3 * 0.3
+        });
+        if far {
+            away += 1;
+            let r = crate::geometry::tet_radius_edge(c);
+            assert!(r <= 1.2 * (1.0 + 1e-9), "tet {t} {c:?}: radius-edge {r}");
+        }
+    }
+    assert!(away > 500, "{away} tets away from the wedge");
+}
+
+#[test]
+fn merged_coplanar_triangles_mesh_like_the_polygon() {
+    // The unit cube with each face given as two triangles: merged, the diagonals are not
+    // input edges (no subsegment on them) and the mesh meets the bound everywhere, as for the
+    // cube of quadrilaterals; unmerged, each diagonal is covered by subsegments.
+    let quads = box_plc([0.0; 3], [1.0; 3]);
+    let mut tris = Plc {
+        points: quads.points.clone(),
+        ..Plc::default()
+    };
+    for f in &quads.facets {
+        let q = &f.polygons[0];
+        for t in [[q[0], q[1], q[2]], [q[0], q[2], q[3]]] {
+            tris.facets.push(Facet {
+                polygons: vec![t.to_vec()],
+                holes: vec![],
+                marker: f.marker,
+            });
+        }
+    }
+    let opts = Options3 {
+        radius_edge: Some(1.2),
+        merge_coplanar: true,
+        ..Options3::default()
+    };
+    let mesh = tetrahedralize(&tris, &opts).unwrap();
+    check_mesh(&tris, &mesh);
+    assert!(mesh.stats().max_radius_edge <= 1.2 * (1.0 + 1e-9));
+    let on_diagonal = |e: &[u32; 2]| {
+        let [a, b] = e.map(|v| mesh.vertices[v as usize]);
+        // A cube edge keeps two coordinates; a face diagonal only one.
+        (0..3).filter(|&k| a[k] == b[k]).count() < 2
+    };
+    assert!(!mesh.edges.is_empty());
+    assert!(!mesh.edges.iter().any(on_diagonal));
+    let unmerged = Options3 {
+        merge_coplanar: false,
+        ..opts
+    };
+    let mesh = tetrahedralize(&tris, &unmerged).unwrap();
+    check_mesh(&tris, &mesh);
+    assert!(mesh.edges.iter().any(on_diagonal));
+}

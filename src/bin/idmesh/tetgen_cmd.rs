@@ -49,8 +49,11 @@ Switches are letters that may be grouped, e.g. -pq1.414a0.1V:
   -C          check the consistency of the final mesh
   -Q          quiet: print only errors and warnings
   -V          verbose: print counts, volume, quality figures and timings
-  -D -M -J    accepted: idmesh output is always conforming Delaunay, never merges coplanar
-              facets and never drops unused vertices
+  -M          do not merge coplanar facets: by default, as in TetGen, exactly coplanar
+              neighbouring facets with the same marker are meshed as one facet (the edges
+              between them need not appear in the mesh); never with -Y
+  -D -J       accepted: idmesh output is always conforming Delaunay and never drops unused
+              vertices
 Numbers after q take digits and dots; after a and S also exponents, exactly as in TetGen
 (so -a0.1e reads the volume 0.1e: put e first, -pea0.1).
 Not supported: -c, -r, -i, -m, -T, -O, -o2 and the viewer
@@ -196,6 +199,7 @@ fn options(sw: &TetSwitches) -> Options3 {
         region_attributes: sw.region_attributes,
         max_steiner: sw.max_steiner,
         keep_surface: sw.keep_surface,
+        merge_coplanar: !sw.no_merge,
         verbose: sw.verbose && !sw.quiet,
         ..Options3::default()
     }

@@ -25,6 +25,8 @@ pub struct TetSwitches {
     pub max_steiner: Option<u64>,
     /// `Y`: keep the input surface (no Steiner points on segments or facets).
     pub keep_surface: bool,
+    /// `M`: do not merge exactly coplanar neighbouring facets.
+    pub no_merge: bool,
     /// `z`: number output items from 0.
     pub zero_based: bool,
     /// `f`: write every face, not only the boundary ones, to the `.face` file.
@@ -189,14 +191,15 @@ fn parse_group(arg: &str, sw: &mut TetSwitches) -> Result<(), String> {
             'C' => sw.check = true,
             'Q' => sw.quiet = true,
             'V' => sw.verbose = true,
+            'M' => sw.no_merge = true,
             // What idmesh always does: conforming Delaunay output (D, with TetGen's optional
-            // level), no merging of coplanar facets (M), no jettisoning (J).
+            // level), no jettisoning (J).
             'D' => {
                 if chars.get(j + 1).is_some_and(|c| ('1'..='3').contains(c)) {
                     j += 1;
                 }
             }
-            'M' | 'J' => {}
+            'J' => {}
             'h' | 'H' | '?' => {
                 return Err(format!(
                     "-{} inside a switch group; use 'idmesh tetgen --help'",
@@ -341,9 +344,12 @@ mod tests {
             s,
             TetSwitches {
                 plc: true,
+                no_merge: true,
                 ..TetSwitches::default()
             }
         );
+        let (s, _) = run(&["-pJD2", "x"]).unwrap();
+        assert!(!s.no_merge, "coplanar facets are merged unless -M");
         let (s, _) = run(&["-d", "x"]).unwrap();
         assert!(s.detect && s.plc);
     }

@@ -71,8 +71,17 @@ impl Mesher<'_> {
             }
             self.suppress(s, &mut moved)?;
         }
-        self.remove_moved_points(&moved);
-        let flips = self.delaunay_flips();
+        // Flips change the stars of the moved points, so a point that could not go may go
+        // after them.
+        let mut flips = 0;
+        for _round in 0..3 {
+            self.remove_moved_points(&moved);
+            let f = self.delaunay_flips();
+            flips += f;
+            if f == 0 {
+                break;
+            }
+        }
         if self.opts.verbose {
             eprintln!(
                 "idmesh: -Y: {} boundary Steiner points taken off the surface, {} interior points \

@@ -147,7 +147,7 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
         scratch_new: Vec::new(),
         counts: Counts::default(),
     };
-    m.sharp = Sharp::find(plc, &m.feat);
+    m.sharp = Sharp::find(plc, &m.feat, opts.radius_edge);
     m.insert_input_points()?;
     // Every subsegment and subface starts on the queue; taking one checks it.
     let mut keys: Vec<u64> = m.feat.subsegs.keys().copied().collect();
@@ -1340,14 +1340,16 @@ fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
     super::features::dominant_axis(a, b, c).is_none()
 }
 
-/// Input angles below 60°: between two input edges at a vertex, and between two facets along
-/// an edge (dihedral). Radius-edge refinement next to them would never end (each split makes a
-/// smaller bad tet between the two features), so tets touching them are exempt from the bound,
-/// as Triangle and the paper (§6) do for small 2D angles.
+/// Input angles below 60°: between two input edges at a vertex (for two edges of one facet,
+/// below [`wedge_sharp_angle`]), and between two facets along an edge (dihedral). Radius-edge
+/// refinement next to them would never end (each split makes a smaller bad tet between the two
+/// features), so tets touching them are exempt from the bound, as Triangle and the paper (§6)
+/// do for small 2D angles.
 #[derive(Default)]
-struct Sharp {
-    /// Input vertices where two input edges meet below 60°.
-    vertices: crate::hash::FastSet<u32>,
+pub(super) struct Sharp {
+    /// Input vertices where two input edges meet below 60° (two edges of one facet: below
+    /// [`wedge_sharp_angle`]).
+    pub(super) vertices: crate::hash::FastSet<u32>,
     /// Input edges along which two facets meet below 60°.
     edges: crate::hash::FastSet<u32>,
     /// Facet pairs (smaller id first) meeting below 60° along an edge or at a vertex.
@@ -1364,6 +1366,27 @@ struct Sharp {
     zones: Vec<Vec<Zone>>,
 }
 
+/// The angle below which two input edges of one facet meeting at a vertex make it sharp, for
+/// the radius-edge bound `radius_edge`: 30° (a spike's tip), or more when the bound is below √2.
+///
+/// Why: take the vertex `A`, the wedge's split points `P1`, `P2` at the same distance `r` from
+/// it (concentric shells, see `split_point`) and the wedge angle `θ`. Any tet with corners
+/// `A`, `P1`, `P2` has its circumcentre above the circumcentre `O` of the subface `A P1 P2`
+/// (radius `ρf = r / (2 cos(θ/2))`), so its circumradius is `R ≥ ρf`, and the circumcentre is
+/// in the subface's diametral ball exactly when `R < √2 ρf`; its shortest edge is at most
+/// `|P1 P2| = 2 r sin(θ/2)`. So some such tet is bad (`R > ρ |P1 P2|`) with its circumcentre
+/// refused for encroaching the subface iff `√2 ρf > ρ |P1 P2|`, i.e. `sin θ < 1 / (√2 ρ)`.
+/// The subface is then split at `O`, which encroaches both wedge subsegments (the angle
+/// `A O P1` is `180° − θ`); they are split at `r / 2`, and the same tet comes back at half the
+/// size, forever (fandisk.off with `-q1.2`: a 30.1° wedge, a tet of ratio 1.38 at every scale,
+/// down to subfaces 1e-9 across). At `ρ = √2` this angle is 30°; for `ρ = 1.2`, 36.1°.
+/// Looser bounds (and no bound) keep 30°: a spike's tip is sharp whatever the bound.
+pub(super) fn wedge_sharp_angle(radius_edge: Option<f64>) -> f64 {
+    let rho = radius_edge.unwrap_or(std::f64::consts::SQRT_2);
+    let sin = (1.0 / (std::f64::consts::SQRT_2 * rho)).min(1.0);
+    sin.asin().max(30f64.to_radians())
+}
+
 /// A protection zone: the points within `sqrt(r2)` of the segment `a b`.
 #[derive(Clone, Copy)]
 struct Zone {
@@ -1376,10 +1399,13 @@ struct Zone {
 const ZONE_FRACTION: f64 = 0.25;
 
 impl Sharp {
-    fn find(plc: &Plc, feat: &Features) -> Sharp {
+    /// The small angles of `plc`; `radius_edge` is the quality bound (it decides how narrow
+    /// a wedge inside one facet must be to sustain endless refinement).
+    pub(super) fn find(plc: &Plc, feat: &Features, radius_edge: Option<f64>) -> Sharp {
         use glam::DVec3;
         let p = |v: u32| DVec3::from(plc.points[v as usize]);
         let small = 60f64.to_radians().cos();
+        let narrow_wedge = wedge_sharp_angle(radius_edge).cos();
         let mut sharp = Sharp::default();
         for (&v, nbrs) in &feat.seg_adj {
             if (v as usize) >= plc.points.len() {
@@ -1396,9 +1422,9 @@ impl Sharp {
                     let (da, db) = ((p(a) - p(v)).normalize(), (p(b) - p(v)).normalize());
                     let cos = da.dot(db);
                     // Two edges of one facet meeting at a moderate angle are the facet mesh's
-                    // business; below 30° (a spike's tip) they are sharp anyway.
+                    // business; a narrower wedge (see `wedge_sharp_angle`) is sharp anyway.
                     let share = facets_of(a).iter().any(|f| facets_of(b).contains(f));
-                    if (cos > small && !share) || cos > 30f64.to_radians().cos() {
+                    if (cos > small && !share) || cos > narrow_wedge {
                         sharp.vertices.insert(v);
                         let edge = |w: u32| feat.subsegs.get(&super::features::ekey(v, w));
                         if let (Some(&e1), Some(&e2)) = (edge(a), edge(b)) {

@@ -5,7 +5,8 @@
 //!   lowest dimension first, then into the 3D mesh (§6), as soon as it is made.
 //! * Then simplices, lowest dimension first: subsegments, then subfaces, then tetrahedra.
 //!   A queued simplex is re-verified when it is taken (it may be gone or already fine), unless
-//!   it was queued because a refused point encroaches it (`force`).
+//!   it was queued because a point that must go in, or a refused circumcentre, encroaches it
+//!   (see [`Why`]).
 //! * The 3D mesh is always the Delaunay tetrahedralization of its vertices (no constraints):
 //!   features appear in it because they are refined until they do (induction hypotheses 2, 3).
 //! * Exterior, holes and regions are found by flooding across non-subfaces once every feature
@@ -35,6 +36,30 @@ const UNKNOWN: u32 = u32::MAX - 1;
 /// Scratch mark of tetrahedra in the component being resolved.
 const RESOLVING: u32 = u32::MAX - 2;
 
+/// Why a subsegment or subface is on the work queue.
+#[derive(Debug, Clone, Copy)]
+enum Why {
+    /// To be checked when taken: split only if missing from a mesh (or, outside lazy mode,
+    /// encroached).
+    Check,
+    /// To be split unchecked: a point that must go in (a missing subface's split point, a
+    /// rounding sliver's facet point) encroaches it or lies on it.
+    Force,
+    /// To be split unchecked for the bad tet in slot `.0` with corners `.1`, whose circumcentre
+    /// was refused for encroaching it, while that tet is in the mesh. One split usually removes
+    /// the tet; its other demands are then dropped, and the tets that replaced it are judged
+    /// afresh (each encroached simplex split anyway would refine the surface for a tet that is
+    /// gone: pipe.off -pq1.2 made 705k tets that way, 431k without).
+    ForTet(u32, [u32; 4]),
+}
+
+impl Why {
+    /// Whether the simplex is split without checking it first.
+    fn forced(self) -> bool {
+        !matches!(self, Why::Check)
+    }
+}
+
 /// A simplex a refused point encroaches (to be split before retrying).
 #[derive(Debug, Clone, Copy)]
 enum Enc {
@@ -58,8 +83,8 @@ struct Mesher<'a> {
     tets: Tets,
     feat: Features,
     fmesh: Vec<FacetMesh>,
-    seg_q: VecDeque<([u32; 2], bool)>,
-    face_q: VecDeque<([u32; 3], u32, bool)>,
+    seg_q: VecDeque<([u32; 2], Why)>,
+    face_q: VecDeque<([u32; 3], u32, Why)>,
     tet_q: VecDeque<(u32, [u32; 4])>,
     /// Region per tetrahedron slot once classified (`OUTSIDE`, or 0 = no region, r + 1).
     region: Vec<u32>,
@@ -153,7 +178,8 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
     let mut keys: Vec<u64> = m.feat.subsegs.keys().copied().collect();
     keys.sort_unstable();
     for k in keys {
-        m.seg_q.push_back(([(k >> 32) as u32, k as u32], false));
+        m.seg_q
+            .push_back(([(k >> 32) as u32, k as u32], Why::Check));
     }
     m.run()?;
     m.classify(plc)?;
@@ -182,7 +208,7 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
                 break;
             }
             for (f, fid) in faces {
-                m.face_q.push_back((f, fid, true));
+                m.face_q.push_back((f, fid, Why::Force));
             }
             m.run()?;
         }
@@ -275,10 +301,10 @@ impl Mesher<'_> {
         }
         for t in ch.added {
             self.feat.subfaces.insert(fkey(t), f);
-            self.face_q.push_back((t, f, false));
+            self.face_q.push_back((t, f, Why::Check));
         }
         for s in ch.encroached {
-            self.seg_q.push_back((s, false));
+            self.seg_q.push_back((s, Why::Check));
         }
         Ok(())
     }
@@ -389,10 +415,10 @@ impl Mesher<'_> {
             self.hint = t;
         }
         for &s in &touched_segs {
-            self.seg_q.push_back((s, false));
+            self.seg_q.push_back((s, Why::Check));
         }
         for &(f, fid) in &touched_faces {
-            self.face_q.push_back((f, fid, false));
+            self.face_q.push_back((f, fid, Why::Check));
         }
         if self.classified {
             for &t in &new {
@@ -486,10 +512,14 @@ impl Mesher<'_> {
                     c.tet_refused
                 );
             }
-            if let Some((s, force)) = self.seg_q.pop_front() {
-                self.take_subseg(s, force)?;
-            } else if let Some((f, fid, force)) = self.face_q.pop_front() {
-                self.take_subface(f, fid, force)?;
+            if let Some((s, why)) = self.seg_q.pop_front() {
+                if !self.obsolete(why) {
+                    self.take_subseg(s, why.forced())?;
+                }
+            } else if let Some((f, fid, why)) = self.face_q.pop_front() {
+                if !self.obsolete(why) {
+                    self.take_subface(f, fid, why)?;
+                }
             } else if self.dirty && self.classified {
                 // Conformity is restored: find the regions of the tets made meanwhile before
                 // judging tets again.
@@ -581,8 +611,8 @@ impl Mesher<'_> {
             self.counts.seg_missing += 1;
         }
         self.feat.split_subseg(a, b, m, e);
-        self.seg_q.push_back(([a, m], false));
-        self.seg_q.push_back(([m, b], false));
+        self.seg_q.push_back(([a, m], Why::Check));
+        self.seg_q.push_back(([m, b], Why::Check));
         let facets = self.feat.edges[e as usize].facets.clone();
         for f in facets {
             self.facet_insert(f, m, false, Some([a, b]))
@@ -670,7 +700,8 @@ impl Mesher<'_> {
         false
     }
 
-    fn take_subface(&mut self, v: [u32; 3], fid: u32, force: bool) -> Result<(), Error> {
+    fn take_subface(&mut self, v: [u32; 3], fid: u32, why: Why) -> Result<(), Error> {
+        let force = why.forced();
         if self.feat.subface(v) != Some(fid) {
             return Ok(());
         }
@@ -711,7 +742,7 @@ impl Mesher<'_> {
                 // the face changing, as next to small input angles.)
                 let pts = &self.pts;
                 segs.retain(|s| in_diametral_ball_seg3(pts[s[0] as usize], pts[s[1] as usize], cc));
-                if self.defer_to_segments(&segs, v, fid, force) {
+                if self.defer_to_segments(&segs, v, fid, why) {
                     return Ok(());
                 }
                 // None, or every such subsegment is below the size floor: split inside the
@@ -737,7 +768,7 @@ impl Mesher<'_> {
                     return Ok(());
                 }
                 Err(FacetInsertError::Encroaches(segs)) => {
-                    if self.defer_to_segments(&segs, v, fid, force) {
+                    if self.defer_to_segments(&segs, v, fid, why) {
                         self.pts.pop();
                         return Ok(());
                     }
@@ -779,21 +810,35 @@ impl Mesher<'_> {
             .map_err(|_| Error::Internal(format!("facet point {m} refused")))
     }
 
-    /// Queues the subsegments a refused facet point encroaches (to be split first) and the
-    /// subface again; `false` (nothing queued) when every one of them is below the size floor,
-    /// so that a face cannot wait forever for splits that will never happen.
-    fn defer_to_segments(&mut self, segs: &[[u32; 2]], v: [u32; 3], fid: u32, force: bool) -> bool {
+    /// Queues the subsegments a refused facet point encroaches (to be split first, unchecked,
+    /// for the subface's own cause) and the subface again; `false` (nothing queued) when every
+    /// one of them is below the size floor, so that a face cannot wait forever for splits that
+    /// will never happen.
+    fn defer_to_segments(&mut self, segs: &[[u32; 2]], v: [u32; 3], fid: u32, why: Why) -> bool {
+        let seg_why = match why {
+            Why::Check => Why::Force,
+            w => w,
+        };
         let mut any = false;
         for &[x, y] in segs {
             if !self.below_floor(&[self.pts[x as usize], self.pts[y as usize]]) {
-                self.seg_q.push_front(([x, y], true));
+                self.seg_q.push_front(([x, y], seg_why));
                 any = true;
             }
         }
         if any {
-            self.face_q.push_back((v, fid, force));
+            self.face_q.push_back((v, fid, why));
         }
         any
+    }
+
+    /// Whether a queued demand has lost its cause: the bad tet whose refused circumcentre made
+    /// it is no longer in the mesh (a split made for it, or any other insertion, removed it).
+    fn obsolete(&self, why: Why) -> bool {
+        match why {
+            Why::ForTet(t, vs) => !self.tets.alive(t) || self.tets.verts(t) != vs,
+            Why::Check | Why::Force => false,
+        }
     }
 
     fn is_bad(&self, t: u32) -> bool {
@@ -880,7 +925,7 @@ impl Mesher<'_> {
                     // holds the circumcenter in exact arithmetic).
                     if !self.in_box(cc) {
                         if let Some((f, fid)) = self.subface_towards(t, cc) {
-                            self.face_q.push_back((f, fid, true));
+                            self.face_q.push_back((f, fid, Why::ForTet(t, vs)));
                             self.tet_q.push_back((t, vs));
                         }
                     }
@@ -888,8 +933,8 @@ impl Mesher<'_> {
                 }
                 for e in enc {
                     match e {
-                        Enc::Seg(s) => self.seg_q.push_back((s, true)),
-                        Enc::Face(f, fid) => self.face_q.push_back((f, fid, true)),
+                        Enc::Seg(s) => self.seg_q.push_back((s, Why::ForTet(t, vs))),
+                        Enc::Face(f, fid) => self.face_q.push_back((f, fid, Why::ForTet(t, vs))),
                     }
                 }
                 self.tet_q.push_back((t, vs));

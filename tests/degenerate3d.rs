@@ -820,6 +820,93 @@ fn bug_f_prism_with_thin_hole_radius_edge_2() {
     run_all(&plc, &spec, &[quality(2.0)]);
 }
 
+/// The star of vertex 4850 of fandisk.off (its six surface triangles, coordinates as in the
+/// file) closed by an apex below it. Two edges of one triangle meet at the vertex at 30.1°.
+fn fandisk_wedge_plc() -> Plc {
+    let points = [
+        [-0.001, -0.17341, 0.47099],
+        [0.0026, -0.17658, 0.45306],
+        [0.0026, -0.15798, 0.44983],
+        [-0.0011, -0.15485, 0.4682],
+        [-0.0113, -0.17074, 0.48622],
+        [-0.0231, -0.17257, 0.47577],
+        [-0.0204, -0.17449, 0.46489],
+        [-0.02246, -0.15528, 0.46047],
+    ];
+    let facets: [(&[u32], i32); 12] = [
+        (&[1, 2, 0], 1),
+        (&[1, 0, 6], 1),
+        (&[2, 3, 0], 1),
+        (&[0, 3, 4], 1),
+        (&[0, 4, 5], 1),
+        (&[0, 5, 6], 1),
+        (&[2, 1, 7], 2),
+        (&[3, 2, 7], 2),
+        (&[4, 3, 7], 2),
+        (&[5, 4, 7], 2),
+        (&[6, 5, 7], 2),
+        (&[1, 6, 7], 2),
+    ];
+    literal_plc(&points, &facets)
+}
+
+#[test]
+fn bug_g_narrow_wedge_in_a_facet_does_not_cascade() {
+    // Was (fandisk.off -pq1.2): no end without a volume bound, "facet point refused" with
+    // one. With the bound 1.2, the tet of vertex 0 and three split points at one distance from
+    // it on its edges (two of them the 30.1° wedge) has radius-edge ratio 1.38 at every scale;
+    // its circumcentre encroaches the wedge subface, whose split encroaches the wedge
+    // subsegments: the same tet came back at half the size until precision ran out. Such a
+    // vertex is sharp for that bound (its tets are exempt), so refinement stays at the scale of
+    // the input.
+    let plc = fandisk_wedge_plc();
+    let volume = {
+        let o = plc.points[0];
+        let parts = plc.facets.iter().map(|f| {
+            let p = &f.polygons[0];
+            common3d::tet_volume([
+                o,
+                plc.points[p[0] as usize],
+                plc.points[p[1] as usize],
+                plc.points[p[2] as usize],
+            ])
+        });
+        common3d::sum_compensated(parts).abs()
+    };
+    let spec = Spec3 {
+        volume: Some(volume),
+        // Small angles (the wedge, the apex below): validity and conformity only.
+        check_quality: false,
+        timeout: Duration::from_secs(30),
+        ..Spec3::default()
+    };
+    let shortest_input = common3d::input_edges(&plc)
+        .iter()
+        .map(|e| {
+            common3d::norm(common3d::sub(
+                plc.points[e[0] as usize],
+                plc.points[e[1] as usize],
+            ))
+        })
+        .fold(f64::INFINITY, f64::min);
+    for mesh in run_all(&plc, &spec, &[quality(1.2), quality_volume(1.2, 1e-8)]) {
+        assert!(mesh.complete, "refinement did not complete");
+        let mut shortest = f64::INFINITY;
+        for t in 0..mesh.tets.len() {
+            let c = mesh.corners(t);
+            for i in 0..4 {
+                for j in i + 1..4 {
+                    shortest = shortest.min(common3d::norm(common3d::sub(c[i], c[j])));
+                }
+            }
+        }
+        assert!(
+            shortest > shortest_input / 64.0,
+            "an edge of {shortest} next to input edges of {shortest_input} and more"
+        );
+    }
+}
+
 // ------------------------------------------------------------------ the checker can fail
 
 #[test]

@@ -5,7 +5,8 @@
 //!   lowest dimension first, then into the 3D mesh (§6), as soon as it is made.
 //! * Then simplices, lowest dimension first: subsegments, then subfaces, then tetrahedra.
 //!   A queued simplex is re-verified when it is taken (it may be gone or already fine), unless
-//!   it was queued because a refused point encroaches it (`force`).
+//!   it was queued because a point that must go in, or a refused circumcentre, encroaches it
+//!   (see [`Why`]).
 //! * The 3D mesh is always the Delaunay tetrahedralization of its vertices (no constraints):
 //!   features appear in it because they are refined until they do (induction hypotheses 2, 3).
 //! * Exterior, holes and regions are found by flooding across non-subfaces once every feature
@@ -38,6 +39,30 @@ const UNKNOWN: u32 = u32::MAX - 1;
 /// Scratch mark of tetrahedra in the component being resolved.
 const RESOLVING: u32 = u32::MAX - 2;
 
+/// Why a subsegment or subface is on the work queue.
+#[derive(Debug, Clone, Copy)]
+enum Why {
+    /// To be checked when taken: split only if missing from a mesh (or, outside lazy mode,
+    /// encroached).
+    Check,
+    /// To be split unchecked: a point that must go in (a missing subface's split point, a
+    /// rounding sliver's facet point) encroaches it or lies on it.
+    Force,
+    /// To be split unchecked for the bad tet in slot `.0` with corners `.1`, whose circumcentre
+    /// was refused for encroaching it, while that tet is in the mesh. One split usually removes
+    /// the tet; its other demands are then dropped, and the tets that replaced it are judged
+    /// afresh (each encroached simplex split anyway would refine the surface for a tet that is
+    /// gone: pipe.off -pq1.2 made 705k tets that way, 431k without).
+    ForTet(u32, [u32; 4]),
+}
+
+impl Why {
+    /// Whether the simplex is split without checking it first.
+    fn forced(self) -> bool {
+        !matches!(self, Why::Check)
+    }
+}
+
 /// A simplex a refused point encroaches (to be split before retrying).
 #[derive(Debug, Clone, Copy)]
 enum Enc {
@@ -64,8 +89,8 @@ struct Mesher<'a> {
     tets: Tets,
     feat: Features,
     fmesh: Vec<FacetMesh>,
-    seg_q: VecDeque<([u32; 2], bool)>,
-    face_q: VecDeque<([u32; 3], u32, bool)>,
+    seg_q: VecDeque<([u32; 2], Why)>,
+    face_q: VecDeque<([u32; 3], u32, Why)>,
     tet_q: VecDeque<(u32, [u32; 4])>,
     /// Region per tetrahedron slot once classified (`OUTSIDE`, or 0 = no region, r + 1).
     region: Vec<u32>,
@@ -154,13 +179,14 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
         scratch_new: Vec::new(),
         counts: Counts::default(),
     };
-    m.sharp = Sharp::find(plc, &m.feat);
+    m.sharp = Sharp::find(plc, &m.feat, opts.radius_edge);
     m.insert_input_points()?;
     // Every subsegment and subface starts on the queue; taking one checks it.
     let mut keys: Vec<u64> = m.feat.subsegs.keys().copied().collect();
     keys.sort_unstable();
     for k in keys {
-        m.seg_q.push_back(([(k >> 32) as u32, k as u32], false));
+        m.seg_q
+            .push_back(([(k >> 32) as u32, k as u32], Why::Check));
     }
     m.run()?;
     m.classify(plc)?;
@@ -193,7 +219,7 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
                 break;
             }
             for (f, fid) in faces {
-                m.face_q.push_back((f, fid, true));
+                m.face_q.push_back((f, fid, Why::Force));
             }
             m.run()?;
         }
@@ -286,10 +312,10 @@ impl Mesher<'_> {
         }
         for t in ch.added {
             self.feat.subfaces.insert(fkey(t), f);
-            self.face_q.push_back((t, f, false));
+            self.face_q.push_back((t, f, Why::Check));
         }
         for s in ch.encroached {
-            self.seg_q.push_back((s, false));
+            self.seg_q.push_back((s, Why::Check));
         }
         Ok(())
     }
@@ -382,10 +408,10 @@ impl Mesher<'_> {
             self.hint = t;
         }
         for &s in &touched_segs {
-            self.seg_q.push_back((s, false));
+            self.seg_q.push_back((s, Why::Check));
         }
         for &(f, fid) in &touched_faces {
-            self.face_q.push_back((f, fid, false));
+            self.face_q.push_back((f, fid, Why::Check));
         }
         if self.classified {
             for &t in &new {
@@ -479,10 +505,14 @@ impl Mesher<'_> {
                     c.tet_refused
                 );
             }
-            if let Some((s, force)) = self.seg_q.pop_front() {
-                self.take_subseg(s, force)?;
-            } else if let Some((f, fid, force)) = self.face_q.pop_front() {
-                self.take_subface(f, fid, force)?;
+            if let Some((s, why)) = self.seg_q.pop_front() {
+                if !self.obsolete(why) {
+                    self.take_subseg(s, why.forced())?;
+                }
+            } else if let Some((f, fid, why)) = self.face_q.pop_front() {
+                if !self.obsolete(why) {
+                    self.take_subface(f, fid, why)?;
+                }
             } else if self.dirty && self.classified {
                 // Conformity is restored: find the regions of the tets made meanwhile before
                 // judging tets again.
@@ -572,8 +602,8 @@ impl Mesher<'_> {
             self.counts.seg_missing += 1;
         }
         self.feat.split_subseg(a, b, m, e);
-        self.seg_q.push_back(([a, m], false));
-        self.seg_q.push_back(([m, b], false));
+        self.seg_q.push_back(([a, m], Why::Check));
+        self.seg_q.push_back(([m, b], Why::Check));
         let facets = self.feat.edges[e as usize].facets.clone();
         for f in facets {
             self.facet_insert(f, m, false, Some([a, b]))
@@ -633,7 +663,8 @@ impl Mesher<'_> {
         false
     }
 
-    fn take_subface(&mut self, v: [u32; 3], fid: u32, force: bool) -> Result<(), Error> {
+    fn take_subface(&mut self, v: [u32; 3], fid: u32, why: Why) -> Result<(), Error> {
+        let force = why.forced();
         if self.feat.subface(v) != Some(fid) {
             return Ok(());
         }
@@ -661,7 +692,7 @@ impl Mesher<'_> {
                 // the face changing, as next to small input angles.)
                 let pts = &self.pts;
                 segs.retain(|s| in_diametral_ball_seg3(pts[s[0] as usize], pts[s[1] as usize], cc));
-                if self.defer_to_segments(&segs, v, fid, force) {
+                if self.defer_to_segments(&segs, v, fid, why) {
                     return Ok(());
                 }
                 // None, or every such subsegment is below the size floor: split inside the
@@ -687,7 +718,7 @@ impl Mesher<'_> {
                     return Ok(());
                 }
                 Err(FacetInsertError::Encroaches(segs)) => {
-                    if self.defer_to_segments(&segs, v, fid, force) {
+                    if self.defer_to_segments(&segs, v, fid, why) {
                         self.pts.pop();
                         return Ok(());
                     }
@@ -729,21 +760,35 @@ impl Mesher<'_> {
             .map_err(|_| Error::Internal(format!("facet point {m} refused")))
     }
 
-    /// Queues the subsegments a refused facet point encroaches (to be split first) and the
-    /// subface again; `false` (nothing queued) when every one of them is below the size floor,
-    /// so that a face cannot wait forever for splits that will never happen.
-    fn defer_to_segments(&mut self, segs: &[[u32; 2]], v: [u32; 3], fid: u32, force: bool) -> bool {
+    /// Queues the subsegments a refused facet point encroaches (to be split first, unchecked,
+    /// for the subface's own cause) and the subface again; `false` (nothing queued) when every
+    /// one of them is below the size floor, so that a face cannot wait forever for splits that
+    /// will never happen.
+    fn defer_to_segments(&mut self, segs: &[[u32; 2]], v: [u32; 3], fid: u32, why: Why) -> bool {
+        let seg_why = match why {
+            Why::Check => Why::Force,
+            w => w,
+        };
         let mut any = false;
         for &[x, y] in segs {
             if !self.below_floor(&[self.pts[x as usize], self.pts[y as usize]]) {
-                self.seg_q.push_front(([x, y], true));
+                self.seg_q.push_front(([x, y], seg_why));
                 any = true;
             }
         }
         if any {
-            self.face_q.push_back((v, fid, force));
+            self.face_q.push_back((v, fid, why));
         }
         any
+    }
+
+    /// Whether a queued demand has lost its cause: the bad tet whose refused circumcentre made
+    /// it is no longer in the mesh (a split made for it, or any other insertion, removed it).
+    fn obsolete(&self, why: Why) -> bool {
+        match why {
+            Why::ForTet(t, vs) => !self.tets.alive(t) || self.tets.verts(t) != vs,
+            Why::Check | Why::Force => false,
+        }
     }
 
     fn is_bad(&self, t: u32) -> bool {
@@ -834,7 +879,7 @@ impl Mesher<'_> {
                     // holds the circumcenter in exact arithmetic).
                     if !self.in_box(cc) {
                         if let Some((f, fid)) = self.subface_towards(t, cc) {
-                            self.face_q.push_back((f, fid, true));
+                            self.face_q.push_back((f, fid, Why::ForTet(t, vs)));
                             self.tet_q.push_back((t, vs));
                         }
                     }
@@ -842,8 +887,8 @@ impl Mesher<'_> {
                 }
                 for e in enc {
                     match e {
-                        Enc::Seg(s) => self.seg_q.push_back((s, true)),
-                        Enc::Face(f, fid) => self.face_q.push_back((f, fid, true)),
+                        Enc::Seg(s) => self.seg_q.push_back((s, Why::ForTet(t, vs))),
+                        Enc::Face(f, fid) => self.face_q.push_back((f, fid, Why::ForTet(t, vs))),
                     }
                 }
                 self.tet_q.push_back((t, vs));
@@ -1296,10 +1341,11 @@ fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
     super::features::dominant_axis(a, b, c).is_none()
 }
 
-/// Input angles below 60°: between two input edges at a vertex, and between two facets along
-/// an edge (dihedral). Radius-edge refinement next to them would never end (each split makes a
-/// smaller bad tet between the two features), so tets whose badness they cause are exempt from
-/// the bound, as Triangle and the paper (§6) do for small 2D angles.
+/// Input angles below 60°: between two input edges at a vertex (for two edges of one facet,
+/// below [`wedge_sharp_angle`]), and between two facets along an edge (dihedral). Radius-edge
+/// refinement next to them would never end (each split makes a smaller bad tet between the two
+/// features), so tets whose badness they cause are exempt from the bound, as Triangle and the
+/// paper (§6) do for small 2D angles.
 ///
 /// At a sharp vertex the judgement goes by the tet's shortest edge, which is what makes its
 /// radius-edge ratio large: only a short edge pinned by the small angle excuses the tet (one
@@ -1308,9 +1354,10 @@ fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
 /// exempting every such tet, however large, left whole inputs unrefined (u.off's triangulated
 /// surface has a sharp vertex almost everywhere).
 #[derive(Default)]
-struct Sharp {
-    /// Input vertices where two input edges meet below 60°.
-    vertices: crate::hash::FastSet<u32>,
+pub(super) struct Sharp {
+    /// Input vertices where two input edges meet below 60° (two edges of one facet: below
+    /// [`wedge_sharp_angle`]).
+    pub(super) vertices: crate::hash::FastSet<u32>,
     /// Input edges along which two facets meet below 60°.
     edges: crate::hash::FastSet<u32>,
     /// Facet pairs (smaller id first) meeting below 60° along an edge or at a vertex.
@@ -1384,6 +1431,27 @@ impl Wedge {
     }
 }
 
+/// The angle below which two input edges of one facet meeting at a vertex make it sharp, for
+/// the radius-edge bound `radius_edge`: 30° (a spike's tip), or more when the bound is below √2.
+///
+/// Why: take the vertex `A`, the wedge's split points `P1`, `P2` at the same distance `r` from
+/// it (concentric shells, see `split_point`) and the wedge angle `θ`. Any tet with corners
+/// `A`, `P1`, `P2` has its circumcentre above the circumcentre `O` of the subface `A P1 P2`
+/// (radius `ρf = r / (2 cos(θ/2))`), so its circumradius is `R ≥ ρf`, and the circumcentre is
+/// in the subface's diametral ball exactly when `R < √2 ρf`; its shortest edge is at most
+/// `|P1 P2| = 2 r sin(θ/2)`. So some such tet is bad (`R > ρ |P1 P2|`) with its circumcentre
+/// refused for encroaching the subface iff `√2 ρf > ρ |P1 P2|`, i.e. `sin θ < 1 / (√2 ρ)`.
+/// The subface is then split at `O`, which encroaches both wedge subsegments (the angle
+/// `A O P1` is `180° − θ`); they are split at `r / 2`, and the same tet comes back at half the
+/// size, forever (fandisk.off with `-q1.2`: a 30.1° wedge, a tet of ratio 1.38 at every scale,
+/// down to subfaces 1e-9 across). At `ρ = √2` this angle is 30°; for `ρ = 1.2`, 36.1°.
+/// Looser bounds (and no bound) keep 30°: a spike's tip is sharp whatever the bound.
+pub(super) fn wedge_sharp_angle(radius_edge: Option<f64>) -> f64 {
+    let rho = radius_edge.unwrap_or(std::f64::consts::SQRT_2);
+    let sin = (1.0 / (std::f64::consts::SQRT_2 * rho)).min(1.0);
+    sin.asin().max(30f64.to_radians())
+}
+
 /// A protection zone: the points within `sqrt(r2)` of the segment `a b`.
 #[derive(Clone, Copy)]
 struct Zone {
@@ -1396,10 +1464,13 @@ struct Zone {
 const ZONE_FRACTION: f64 = 0.25;
 
 impl Sharp {
-    fn find(plc: &Plc, feat: &Features) -> Sharp {
+    /// The small angles of `plc`; `radius_edge` is the quality bound (it decides how narrow
+    /// a wedge inside one facet must be to sustain endless refinement).
+    pub(super) fn find(plc: &Plc, feat: &Features, radius_edge: Option<f64>) -> Sharp {
         use glam::DVec3;
         let p = |v: u32| DVec3::from(plc.points[v as usize]);
         let small = 60f64.to_radians().cos();
+        let narrow_wedge = wedge_sharp_angle(radius_edge).cos();
         let mut sharp = Sharp::default();
         let mut ball_r2: crate::hash::FastMap<u32, f64> = Default::default();
         for (&v, nbrs) in &feat.seg_adj {
@@ -1417,9 +1488,9 @@ impl Sharp {
                     let (da, db) = ((p(a) - p(v)).normalize(), (p(b) - p(v)).normalize());
                     let cos = da.dot(db);
                     // Two edges of one facet meeting at a moderate angle are the facet mesh's
-                    // business; below 30° (a spike's tip) they are sharp anyway.
+                    // business; a narrower wedge (see `wedge_sharp_angle`) is sharp anyway.
                     let share = facets_of(a).iter().any(|f| facets_of(b).contains(f));
-                    if (cos > small && !share) || cos > 30f64.to_radians().cos() {
+                    if (cos > small && !share) || cos > narrow_wedge {
                         sharp.vertices.insert(v);
                         let edge = |w: u32| feat.subsegs.get(&super::features::ekey(v, w));
                         if let (Some(&e1), Some(&e2)) = (edge(a), edge(b)) {

@@ -1,5 +1,7 @@
 //! Unit tests of PLC meshing: closed boxes, holes, shared facets, non-convex facets.
 
+use super::features::Features;
+use super::plc::{wedge_sharp_angle, Sharp};
 use super::*;
 use crate::input3d::{Facet, Plc};
 use crate::predicates::orient3d;
@@ -398,4 +400,78 @@ fn merged_coplanar_triangles_mesh_like_the_polygon() {
     let mesh = tetrahedralize(&tris, &unmerged).unwrap();
     check_mesh(&tris, &mesh);
     assert!(mesh.edges.iter().any(on_diagonal));
+}
+
+#[test]
+fn wedge_sharp_angle_follows_the_radius_edge_bound() {
+    let deg = |rho: Option<f64>| wedge_sharp_angle(rho).to_degrees();
+    for rho in [None, Some(std::f64::consts::SQRT_2), Some(2.0), Some(10.0)] {
+        assert!((deg(rho) - 30.0).abs() < 1e-9, "{rho:?}: {}", deg(rho));
+    }
+    assert!(
+        (deg(Some(1.2)) - 36.1042).abs() < 1e-3,
+        "{}",
+        deg(Some(1.2))
+    );
+    assert!((deg(Some(1.0)) - 45.0).abs() < 1e-9, "{}", deg(Some(1.0)));
+    assert!((deg(Some(0.5)) - 90.0).abs() < 1e-9, "{}", deg(Some(0.5)));
+}
+
+/// The unit cube with its bottom split by a diagonal from the origin to `(1, 0.625, 0)` (on the
+/// edge x = 1), so two edges of one bottom facet meet at the origin at 32.0°.
+fn cube_with_narrow_bottom_wedge() -> Plc {
+    let points = vec![
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 0.625, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [1.0, 0.0, 1.0],
+        [1.0, 1.0, 1.0],
+        [0.0, 1.0, 1.0],
+    ];
+    let loops: [&[u32]; 7] = [
+        &[0, 1, 2],
+        &[0, 2, 3, 4],
+        &[5, 6, 7, 8],
+        &[0, 1, 6, 5],
+        &[4, 3, 7, 8],
+        &[0, 4, 8, 5],
+        &[1, 2, 3, 7, 6],
+    ];
+    Plc {
+        points,
+        facets: loops
+            .iter()
+            .map(|l| Facet {
+                polygons: vec![l.to_vec()],
+                holes: vec![],
+                marker: 1,
+            })
+            .collect(),
+        ..Plc::default()
+    }
+}
+
+#[test]
+fn a_32_degree_wedge_in_a_facet_is_sharp_only_below_ratio_sqrt2() {
+    let plc = cube_with_narrow_bottom_wedge();
+    let feat = Features::new(&plc).unwrap();
+    for (rho, sharp) in [(Some(1.2), true), (Some(1.414), false), (None, false)] {
+        let s = Sharp::find(&plc, &feat, rho);
+        assert_eq!(s.vertices.contains(&0), sharp, "{rho:?}");
+        // The other corners have no angle below 45° within a facet and none below 60° across.
+        assert_eq!(s.vertices.len(), usize::from(sharp), "{rho:?}");
+    }
+    let mesh = tetrahedralize(
+        &plc,
+        &Options3 {
+            radius_edge: Some(1.2),
+            max_volume: Some(0.001),
+            ..Options3::default()
+        },
+    )
+    .unwrap();
+    check_mesh(&plc, &mesh);
 }

@@ -46,36 +46,50 @@ fn enclosed_volume(pts: &[P3], tris: &[[u32; 3]]) -> f64 {
 /// of `diagonals` is set, else from bottom vertex `i + 1`. Top and bottom are polygon facets
 /// (n >= 4) or triangles. Returns the PLC and its outward surface triangles (for the volume).
 fn twisted_prism(n: usize, twist: f64, top: f64, h: f64, diagonals: u32) -> (Plc, Vec<[u32; 3]>) {
+    twisted_tower(n, &[(1.0, 0.0, 0.0), (top, twist, h)], &[diagonals])
+}
+
+/// A tower of twisted prisms over regular `n`-gons: ring `k` has radius, turn and height
+/// `rings[k]`, and the sides between rings `k` and `k + 1` are split as `diagonals[k]` says
+/// (see [`twisted_prism`]). Every ring is a polygon facet: the first and last bound the
+/// tower, the others are internal facets between two prisms (the domain on both sides).
+fn twisted_tower(n: usize, rings: &[(f64, f64, f64)], diagonals: &[u32]) -> (Plc, Vec<[u32; 3]>) {
     let mut plc = Plc::default();
-    for i in 0..n {
-        let a = TAU * i as f64 / n as f64;
-        plc.points.push([a.cos(), a.sin(), 0.0]);
-    }
-    for i in 0..n {
-        let a = TAU * i as f64 / n as f64 + twist;
-        plc.points.push([top * a.cos(), top * a.sin(), h]);
-    }
-    let n32 = n as u32;
-    let (b, t) = (|i: usize| (i % n) as u32, |i: usize| n32 + (i % n) as u32);
-    let mut outward = Vec::new();
-    for i in 0..n {
-        // Bottom i, i+1 and top i, i+1 make a quadrilateral, counter-clockwise from outside.
-        let quad = [b(i), b(i + 1), t(i + 1), t(i)];
-        let pair = if diagonals >> i & 1 == 1 {
-            [[quad[0], quad[1], quad[2]], [quad[0], quad[2], quad[3]]]
-        } else {
-            [[quad[0], quad[1], quad[3]], [quad[1], quad[2], quad[3]]]
-        };
-        for f in pair {
-            plc.facets.push(tri(f[0], f[1], f[2]));
-            outward.push(f);
+    for &(r, turn, z) in rings {
+        for i in 0..n {
+            let a = TAU * i as f64 / n as f64 + turn;
+            plc.points.push([r * a.cos(), r * a.sin(), z]);
         }
     }
-    let bottom: Vec<u32> = (0..n).rev().map(b).collect();
-    let topv: Vec<u32> = (0..n).map(t).collect();
-    for poly in [bottom, topv] {
-        for k in 1..n - 1 {
-            outward.push([poly[0], poly[k], poly[k + 1]]);
+    let v = |k: usize, i: usize| (k * n + i % n) as u32;
+    let mut outward = Vec::new();
+    for (k, &d) in diagonals.iter().enumerate() {
+        for i in 0..n {
+            // Ring k's i, i+1 and ring k+1's i, i+1: a quadrilateral, counter-clockwise from
+            // outside.
+            let quad = [v(k, i), v(k, i + 1), v(k + 1, i + 1), v(k + 1, i)];
+            let pair = if d >> i & 1 == 1 {
+                [[quad[0], quad[1], quad[2]], [quad[0], quad[2], quad[3]]]
+            } else {
+                [[quad[0], quad[1], quad[3]], [quad[1], quad[2], quad[3]]]
+            };
+            for f in pair {
+                plc.facets.push(tri(f[0], f[1], f[2]));
+                outward.push(f);
+            }
+        }
+    }
+    let last = rings.len() - 1;
+    for k in 0..=last {
+        let poly: Vec<u32> = if k == 0 {
+            (0..n).rev().map(|i| v(0, i)).collect()
+        } else {
+            (0..n).map(|i| v(k, i)).collect()
+        };
+        if k == 0 || k == last {
+            for j in 1..n - 1 {
+                outward.push([poly[0], poly[j], poly[j + 1]]);
+            }
         }
         plc.facets.push(Facet {
             polygons: vec![poly],
@@ -286,5 +300,36 @@ proptest! {
             keep()
         };
         keep_and_check(&plc, &outward, &opts).map_err(TestCaseError::fail)?;
+    }
+
+    /// Towers of two or three twisted prisms: the rings between them are internal facets, so
+    /// a point taken off one has the domain on both sides (two wedges, two moved points).
+    #[test]
+    fn twisted_towers_keep_their_internal_facets(
+        n in 3usize..=6,
+        turns in prop::collection::vec(0.1..0.9f64, 1..=2),
+        radii in prop::collection::vec(0.6..1.2f64, 2),
+        hs in prop::collection::vec(0.3..1.5f64, 2),
+        diagonals in prop::collection::vec(0u32..64, 2),
+        refine in any::<bool>(),
+    ) {
+        let mut rings = vec![(1.0, 0.0, 0.0)];
+        let (mut turn, mut z) = (0.0, 0.0);
+        for (k, t) in turns.iter().enumerate() {
+            turn += t * std::f64::consts::PI / n as f64;
+            z += hs[k];
+            rings.push((radii[k], turn, z));
+        }
+        let (plc, outward) = twisted_tower(n, &rings, &diagonals[..turns.len()]);
+        let v = enclosed_volume(&plc.points, &outward);
+        let opts = if refine {
+            Options3 { radius_edge: Some(1.414), max_volume: Some(v / 200.0), ..keep() }
+        } else {
+            keep()
+        };
+        let (mesh, _) = keep_and_check(&plc, &outward, &opts).map_err(TestCaseError::fail)?;
+        // The internal rings are covered by faces of the mesh on input vertices only (the
+        // checker's facet coverage), and are no boundary: the boundary faces are the outside.
+        prop_assert_eq!(mesh.faces.len(), outward.len() + (turns.len() - 1) * (n - 2));
     }
 }

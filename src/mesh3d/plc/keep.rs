@@ -16,7 +16,8 @@
 //!
 //! The moved points are then removed where their star can be re-coned from one of its own
 //! vertices, so that points stay only where the surface needs them (a Schönhardt-like
-//! region). The result is a valid tetrahedralization whose boundary is exactly the input
+//! region), and Lawson flips ([`super::flip`]) bring the tets next to the surface closer to
+//! Delaunay. The result is a valid tetrahedralization whose boundary is exactly the input
 //! surface; it is not Delaunay next to the surface. Quality refinement afterwards inserts
 //! interior points only, with cavities that stop at subfaces and are shrunk to star shape
 //! ([`Tets::find_cavity_walled`]).
@@ -43,8 +44,8 @@ struct FacetPatch {
     new: Vec<[u32; 3]>,
 }
 
-/// One group of tets around a suppressed point: the tets (star indices), their floor faces as
-/// seen from inside the group (outward, in [`FACE`] order), and the facets they lie on.
+/// One group of tets around a suppressed point: the tets (star indices), and their floor faces
+/// as seen from inside the group (outward, in [`FACE`] order), each with its facet.
 #[derive(Default)]
 struct Group {
     tets: Vec<usize>,

@@ -695,19 +695,11 @@ impl Tets {
                 came_from = (h & 3) as usize;
                 continue;
             }
-            let r = (t as usize ^ step).wrapping_mul(0x9E37_79B9) >> 7;
-            for j in 0..4 {
-                let f = (r + j) & 3;
-                if f == came_from {
-                    continue;
-                }
-                let [a, b, c] = FACE[f].map(|i| self.point(tet.v[i]));
-                if orient3d_fast(a, b, c, p) < 0.0 {
-                    let h = tet.n[f];
-                    t = h >> 2;
-                    came_from = (h & 3) as usize;
-                    continue 'walk;
-                }
+            if let Some(f) = self.exit_face(t, came_from, step, p) {
+                let h = tet.n[f];
+                t = h >> 2;
+                came_from = (h & 3) as usize;
+                continue 'walk;
             }
             // p is in the closed tet t.
             return match tet.v.iter().find(|&&x| self.point(x) == p) {
@@ -716,6 +708,21 @@ impl Tets {
             };
         }
         self.locate_by_scan(p)
+    }
+
+    /// A face of real tet `t` that `p` lies strictly beyond, other than `came_from`, tried in a
+    /// pseudo-random order seeded by `t` and `step` (so a remembering walk cannot cycle
+    /// forever); `None` when `p` is in the closed tet.
+    #[inline(always)]
+    fn exit_face(&self, t: TetId, came_from: usize, step: usize, p: [f64; 3]) -> Option<usize> {
+        let tet = &self.tets[t as usize];
+        let r = (t as usize ^ step).wrapping_mul(0x9E37_79B9) >> 7;
+        (0..4).map(|j| (r + j) & 3).find(|&f| {
+            f != came_from && {
+                let [a, b, c] = FACE[f].map(|i| self.point(tet.v[i]));
+                orient3d_fast(a, b, c, p) < 0.0
+            }
+        })
     }
 
     /// Locates `p` by testing every live tet (the fallback of [`Tets::locate`]).

@@ -231,22 +231,14 @@ impl Tets {
         let budget = 64 + self.tets.len();
         'walk: for step in 0..budget {
             let tet = &self.tets[t as usize];
-            let r = (t as usize ^ step).wrapping_mul(0x9E37_79B9) >> 7;
-            for j in 0..4 {
-                let f = (r + j) & 3;
-                if f == came_from {
-                    continue;
+            if let Some(f) = self.exit_face(t, came_from, step, p) {
+                let h = tet.n[f];
+                if h == NONE || wall(FACE[f].map(|i| tet.v[i])) {
+                    return None;
                 }
-                let [a, b, c] = FACE[f].map(|i| self.point(tet.v[i]));
-                if orient3d_fast(a, b, c, p) < 0.0 {
-                    let h = tet.n[f];
-                    if h == NONE || wall(FACE[f].map(|i| tet.v[i])) {
-                        return None;
-                    }
-                    t = h >> 2;
-                    came_from = (h & 3) as usize;
-                    continue 'walk;
-                }
+                t = h >> 2;
+                came_from = (h & 3) as usize;
+                continue 'walk;
             }
             if tet.v.iter().any(|&x| self.point(x) == p) {
                 return None;

@@ -19,6 +19,11 @@ if ! python3 -c 'import numpy, scipy' >/dev/null 2>&1; then
   echo "== installing Python packages: numpy scipy"
   python3 -m pip install -q numpy scipy || python3 -m pip install -q --break-system-packages numpy scipy
 fi
+# meshio reads the exchange formats back in tests/exchange.rs.
+if ! python3 -c 'import meshio' >/dev/null 2>&1; then
+  echo "== installing Python package: meshio"
+  python3 -m pip install -q meshio || python3 -m pip install -q --break-system-packages meshio
+fi
 
 echo "== cargo fmt --check"
 cargo fmt --check

@@ -8,9 +8,12 @@
 //! Readers never panic: every problem is a [`ParseError`] naming the file and line. Writers
 //! buffer internally and write floats so that they read back bit for bit.
 //!
+//! * [`exchange`]: VTK (.vtk, .vtu), Gmsh (.msh) and Medit (.mesh) out, 2D and 3D.
+//!
 //! The line tokenizer and number formatting are shared by both families of formats.
 
 mod error;
+pub mod exchange;
 mod lines;
 mod numfmt;
 mod surface_read;

@@ -2,11 +2,13 @@
 //! reads back through idmesh's own Medit reader, and, where the Python package `meshio` is
 //! installed (the test script installs it), meshio reads every file with the same counts.
 
+mod common3d;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use idmesh::io::exchange::{write, Format, MeshView};
-use idmesh::{tetrahedralize, triangulate, Facet, Options, Options3, Plc, Pslg};
+use idmesh::{tetrahedralize, triangulate, Options, Options3, Plc, Pslg};
 
 fn tmpdir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("idmesh-exchange-{}-{name}", std::process::id()));
@@ -14,27 +16,11 @@ fn tmpdir(name: &str) -> PathBuf {
     d
 }
 
+/// A 2 x 1 x 1 box whose six facets carry markers 1 to 6.
 fn box_plc() -> Plc {
-    let mut plc = Plc::default();
-    for z in [0.0, 1.0] {
-        for (x, y) in [(0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (0.0, 1.0)] {
-            plc.points.push([x, y, z]);
-        }
-    }
-    let quads = [
-        [0, 3, 2, 1],
-        [4, 5, 6, 7],
-        [0, 1, 5, 4],
-        [1, 2, 6, 5],
-        [2, 3, 7, 6],
-        [3, 0, 4, 7],
-    ];
-    for (i, q) in quads.iter().enumerate() {
-        plc.facets.push(Facet {
-            polygons: vec![q.to_vec()],
-            holes: vec![],
-            marker: i as i32 + 1,
-        });
+    let mut plc = common3d::box_plc([0.0; 3], [2.0, 1.0, 1.0]);
+    for (i, f) in plc.facets.iter_mut().enumerate() {
+        f.marker = i as i32 + 1;
     }
     plc
 }

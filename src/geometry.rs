@@ -201,30 +201,29 @@ pub fn tet_radius_edge(c: [[f64; 3]; 4]) -> f64 {
     (r2 / e2).sqrt()
 }
 
+/// The six dihedral angles of a tetrahedron, degrees, at edges (0 1), (0 2), (0 3), (1 2),
+/// (1 3), (2 3).
+pub fn tet_dihedrals(c: [[f64; 3]; 4]) -> [f64; 6] {
+    // Face i is opposite corner i; its outward normal is n_i. The dihedral angle at the edge
+    // shared by faces i and j is π minus the angle between their outward normals; that edge
+    // joins the two other corners.
+    let p = c.map(v3);
+    let n: [DVec3; 4] = std::array::from_fn(|i| {
+        let f = [(i + 1) % 4, (i + 2) % 4, (i + 3) % 4].map(|k| p[k]);
+        let m = (f[1] - f[0]).cross(f[2] - f[0]);
+        let m = if m.dot(p[i] - f[0]) > 0.0 { -m } else { m };
+        m.normalize_or_zero()
+    });
+    // Edge (a b) lies on faces (k l), the other two corners.
+    [(2, 3), (1, 3), (1, 2), (0, 3), (0, 2), (0, 1)]
+        .map(|(k, l): (usize, usize)| (-n[k].dot(n[l])).clamp(-1.0, 1.0).acos().to_degrees())
+}
+
 /// Smallest and largest dihedral angle of a tetrahedron, degrees.
 pub fn tet_dihedral_range(c: [[f64; 3]; 4]) -> (f64, f64) {
-    // Face i is opposite corner i; its outward normal is n_i. The dihedral angle at the edge
-    // shared by faces i and j is π minus the angle between their outward normals.
-    let p = c.map(v3);
-    let mut n = [DVec3::ZERO; 4];
-    for (i, ni) in n.iter_mut().enumerate() {
-        let f: Vec<DVec3> = (0..4).filter(|&k| k != i).map(|k| p[k]).collect();
-        let mut m = (f[1] - f[0]).cross(f[2] - f[0]);
-        if m.dot(p[i] - f[0]) > 0.0 {
-            m = -m;
-        }
-        *ni = m.normalize_or_zero();
-    }
-    let (mut lo, mut hi) = (180.0f64, 0.0f64);
-    for i in 0..4 {
-        for j in i + 1..4 {
-            let cosang = (-n[i].dot(n[j])).clamp(-1.0, 1.0);
-            let ang = cosang.acos().to_degrees();
-            lo = lo.min(ang);
-            hi = hi.max(ang);
-        }
-    }
-    (lo, hi)
+    tet_dihedrals(c)
+        .iter()
+        .fold((180.0f64, 0.0f64), |(lo, hi), &a| (lo.min(a), hi.max(a)))
 }
 
 #[cfg(test)]

@@ -8,6 +8,7 @@
 //! Readers never panic: every problem is a [`ParseError`] naming the file and line. Writers
 //! buffer internally and write floats so that they read back bit for bit.
 //!
+//! * [`picture`]: SVG and PNG pictures of meshes coloured by quality (`idmesh show`).
 //! * [`exchange`]: VTK (.vtk, .vtu), Gmsh (.msh) and Medit (.mesh) out, 2D and 3D.
 //!
 //! The line tokenizer and number formatting are shared by both families of formats.
@@ -16,6 +17,7 @@ mod error;
 pub mod exchange;
 mod lines;
 mod numfmt;
+pub mod picture;
 mod surface_read;
 pub mod tetgen;
 mod tetgen_read;

@@ -7,6 +7,8 @@
 // The crate root sits in src/bin/, so submodules need explicit paths.
 #[path = "idmesh/names.rs"]
 mod names;
+#[path = "idmesh/show_cmd.rs"]
+mod show_cmd;
 #[path = "idmesh/switches.rs"]
 mod switches;
 #[path = "idmesh/tetgen_cmd.rs"]
@@ -25,6 +27,7 @@ idmesh: quality Delaunay meshing (drop-in alternative to Triangle and TetGen).
 Usage:
   idmesh triangle [-SWITCHES] FILE   2D meshing with Triangle's switches and file formats
   idmesh tetgen [-SWITCHES] FILE     3D meshing with TetGen's switches and file formats
+  idmesh show STEM [-o OUT.svg|png]  a picture of a mesh coloured by quality
   idmesh triangle --help             the 2D switches
   idmesh tetgen --help               the 3D switches
   idmesh --version
@@ -73,6 +76,7 @@ fn run(args: &[OsString]) -> Result<(), String> {
         }
         Some("triangle") => triangle_cmd::main(&args[1..]),
         Some("tetgen") => tetgen_cmd::main(&args[1..]),
+        Some("show") => show_cmd::main(&args[1..]),
         Some(other) => Err(format!("unknown command '{other}'; try 'idmesh --help'")),
     }
 }

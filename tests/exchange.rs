@@ -139,3 +139,29 @@ fn medit_output_reads_back_as_a_surface() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn a_written_msh_surface_meshes_again() {
+    let dir = tmpdir("msh");
+    let opts3 = Options3 {
+        radius_edge: Some(2.0),
+        ..Default::default()
+    };
+    let mesh = tetrahedralize(&box_plc(), &opts3).unwrap();
+    let p = write_file(&dir, "box", MeshView::from(&mesh), Format::Msh);
+    let back = idmesh::io::tetgen::read_input(&p).unwrap();
+    assert_eq!(back.plc.facets.len(), mesh.faces.len());
+    let again = tetrahedralize(&back.plc, &opts3).unwrap();
+    again.validate().unwrap();
+    let vol = |m: &idmesh::TetMesh| m.stats().volume;
+    assert!((vol(&again) - 2.0).abs() < 1e-12 && (vol(&mesh) - 2.0).abs() < 1e-12);
+    let mut markers: Vec<i32> = again.face_markers.clone();
+    markers.sort_unstable();
+    markers.dedup();
+    assert_eq!(
+        markers,
+        [1, 2, 3, 4, 5, 6],
+        "the physical tags come back as facet markers"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -16,6 +16,7 @@
 mod error;
 pub mod exchange;
 mod lines;
+mod msh_read;
 mod numfmt;
 pub mod picture;
 mod surface_read;
@@ -27,4 +28,5 @@ mod triangle_read;
 mod triangle_write;
 
 pub use error::ParseError;
+pub use msh_read::{parse_msh, read_msh};
 pub use numfmt::Real;

@@ -596,7 +596,7 @@ pub fn read_smesh(path: &Path) -> Result<TetgenInput, ParseError> {
 }
 
 /// Reads any input file TetGen reads, chosen by extension: `.node`, `.poly`, `.smesh`,
-/// `.off`, `.stl`, `.ply` or `.mesh` (Medit).
+/// `.off`, `.stl`, `.ply`, `.mesh` (Medit) or `.msh` (Gmsh).
 pub fn read_input(path: &Path) -> Result<TetgenInput, ParseError> {
     let ext = path
         .extension()
@@ -610,10 +610,11 @@ pub fn read_input(path: &Path) -> Result<TetgenInput, ParseError> {
         Some("stl") => super::surface_read::read_stl(path),
         Some("ply") => super::surface_read::read_ply(path),
         Some("mesh") => super::surface_read::read_medit(path),
+        Some("msh") => super::msh_read::read_msh(path),
         _ => Err(ParseError::new(
             &path.display().to_string(),
             0,
-            "unknown file type: expected .node, .poly, .smesh, .off, .stl, .ply or .mesh",
+            "unknown file type: expected .node, .poly, .smesh, .off, .stl, .ply, .mesh or .msh",
         )),
     }
 }

@@ -21,7 +21,7 @@
 use std::path::Path;
 
 use super::error::ParseError;
-use super::lines::{read_text, Record, Records};
+use super::lines::{capacity, read_text, Record, Records};
 use crate::input3d::{Facet, Plc, Region3};
 use crate::mesh3d::NONE;
 
@@ -57,12 +57,6 @@ pub struct Simplices<const K: usize> {
     pub items: Vec<[u32; K]>,
     /// One marker per simplex, or empty when the file has none.
     pub markers: Vec<i32>,
-}
-
-/// Caps pre-allocation by what the text can possibly hold, so that a corrupt count cannot
-/// request gigabytes before the short file is noticed.
-fn capacity(count: usize, text: &str) -> usize {
-    count.min(text.len() / 2 + 1)
 }
 
 /// A marker count field: absent or 0 means no markers, 1 means markers.

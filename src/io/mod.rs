@@ -15,6 +15,7 @@ mod lines;
 mod numfmt;
 mod surface_read;
 pub mod tetgen;
+mod tetgen_input;
 mod tetgen_read;
 mod tetgen_write;
 pub mod triangle;

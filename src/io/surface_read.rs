@@ -12,7 +12,7 @@ use std::path::Path;
 
 use super::error::ParseError;
 use super::lines::{capacity, read_text, Record, Records};
-use super::tetgen_read::TetgenInput;
+use super::tetgen_input::TetgenInput;
 use crate::input3d::{Facet, Plc};
 use crate::mesh3d::NONE;
 

@@ -21,6 +21,7 @@ mod numfmt;
 pub mod picture;
 mod surface_read;
 pub mod tetgen;
+mod tetgen_input;
 mod tetgen_read;
 mod tetgen_write;
 pub mod triangle;

@@ -13,7 +13,7 @@ use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
 use super::error::ParseError;
-use super::tetgen::TetgenInput;
+use super::tetgen_input::TetgenInput;
 use crate::input3d::{Facet, Plc};
 
 /// Lines of the file with their 1-based numbers, blank lines skipped.

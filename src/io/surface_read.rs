@@ -11,14 +11,10 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use super::error::ParseError;
-use super::lines::{read_text, Record, Records};
-use super::tetgen_read::TetgenInput;
+use super::lines::{capacity, read_text, Record, Records};
+use super::tetgen_input::TetgenInput;
 use crate::input3d::{Facet, Plc};
 use crate::mesh3d::NONE;
-
-fn capacity(count: usize, text: &str) -> usize {
-    count.min(text.len() / 2 + 1)
-}
 
 /// Polygons as read (file indices) with their line numbers, turned into facets once the
 /// numbering base is known.

@@ -23,13 +23,42 @@
 //! idmesh::input3d::check_plc(&input.plc).unwrap();
 //! ```
 
+use std::path::Path;
+
+use super::error::ParseError;
+
 pub use super::surface_read::{
     parse_medit, parse_off, parse_ply, parse_stl, read_medit, read_off, read_ply, read_stl,
 };
+pub use super::tetgen_input::TetgenInput;
 pub use super::tetgen_read::{
-    parse_edge, parse_ele, parse_face, parse_neigh, parse_node, parse_poly, parse_smesh,
-    read_input, read_node, read_poly, read_smesh, EleData3, Simplices, TetgenInput,
+    parse_edge, parse_ele, parse_face, parse_neigh, parse_node, parse_poly, parse_smesh, read_node,
+    read_poly, read_smesh, EleData3, Simplices,
 };
 pub use super::tetgen_write::{
     write_all_faces, write_edge, write_ele, write_face, write_neigh, write_node, write_plc_poly,
 };
+
+/// Reads any input file TetGen reads, chosen by extension: `.node`, `.poly`, `.smesh`,
+/// `.off`, `.stl`, `.ply`, `.mesh` (Medit) or `.msh` (Gmsh).
+pub fn read_input(path: &Path) -> Result<TetgenInput, ParseError> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase());
+    match ext.as_deref() {
+        Some("node") => read_node(path),
+        Some("poly") => read_poly(path),
+        Some("smesh") => read_smesh(path),
+        Some("off") => read_off(path),
+        Some("stl") => read_stl(path),
+        Some("ply") => read_ply(path),
+        Some("mesh") => read_medit(path),
+        Some("msh") => super::msh_read::read_msh(path),
+        _ => Err(ParseError::new(
+            &path.display().to_string(),
+            0,
+            "unknown file type: expected .node, .poly, .smesh, .off, .stl, .ply, .mesh or .msh",
+        )),
+    }
+}

@@ -21,23 +21,10 @@
 use std::path::Path;
 
 use super::error::ParseError;
-use super::lines::{read_text, Record, Records};
+use super::lines::{capacity, read_text, Record, Records};
+use super::tetgen_input::TetgenInput;
 use crate::input3d::{Facet, Plc, Region3};
 use crate::mesh3d::NONE;
-
-/// The contents of a TetGen input file (or of a surface mesh read as one).
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct TetgenInput {
-    /// The PLC with 0-based indices (only `points` for a `.node` file). Marker vectors are
-    /// empty when the file declares no markers.
-    pub plc: Plc,
-    /// The numbering base of the file (0 or 1): output files are numbered the same way.
-    pub base: u32,
-    /// Number of attributes per vertex declared in the header.
-    pub num_point_attributes: usize,
-    /// Vertex attributes, `num_point_attributes` per vertex, vertex by vertex.
-    pub point_attributes: Vec<f64>,
-}
 
 /// The contents of an `.ele` file.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -57,12 +44,6 @@ pub struct Simplices<const K: usize> {
     pub items: Vec<[u32; K]>,
     /// One marker per simplex, or empty when the file has none.
     pub markers: Vec<i32>,
-}
-
-/// Caps pre-allocation by what the text can possibly hold, so that a corrupt count cannot
-/// request gigabytes before the short file is noticed.
-fn capacity(count: usize, text: &str) -> usize {
-    count.min(text.len() / 2 + 1)
 }
 
 /// A marker count field: absent or 0 means no markers, 1 means markers.
@@ -593,30 +574,6 @@ pub fn read_smesh(path: &Path) -> Result<TetgenInput, ParseError> {
     parse_smesh(&text, &path.display().to_string(), || {
         read_node(&path.with_extension("node"))
     })
-}
-
-/// Reads any input file TetGen reads, chosen by extension: `.node`, `.poly`, `.smesh`,
-/// `.off`, `.stl`, `.ply`, `.mesh` (Medit) or `.msh` (Gmsh).
-pub fn read_input(path: &Path) -> Result<TetgenInput, ParseError> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(|e| e.to_ascii_lowercase());
-    match ext.as_deref() {
-        Some("node") => read_node(path),
-        Some("poly") => read_poly(path),
-        Some("smesh") => read_smesh(path),
-        Some("off") => super::surface_read::read_off(path),
-        Some("stl") => super::surface_read::read_stl(path),
-        Some("ply") => super::surface_read::read_ply(path),
-        Some("mesh") => super::surface_read::read_medit(path),
-        Some("msh") => super::msh_read::read_msh(path),
-        _ => Err(ParseError::new(
-            &path.display().to_string(),
-            0,
-            "unknown file type: expected .node, .poly, .smesh, .off, .stl, .ply, .mesh or .msh",
-        )),
-    }
 }
 
 #[cfg(test)]

@@ -2,17 +2,16 @@
 //! PLC as a self-contained `.poly` file.
 //!
 //! Layouts follow TetGen's output (a header line, then one item per line numbered from
-//! `base`); fields are separated by single spaces and floats are written with [`Real`] so that
-//! they read back exactly. Every writer buffers internally, so passing a bare `File` is fine.
+//! `base`); fields are separated by single spaces and floats are written as
+//! [`Real`](super::Real) writes them, so that they read back exactly. Every writer buffers
+//! internally (in large blocks), so passing a bare `File` is fine.
 
 use std::collections::HashMap;
-use std::io::{self, BufWriter, Write};
+use std::io::{self, Write};
 
-use super::numfmt::Real;
+use super::numfmt::Out;
 use crate::input3d::Plc;
 use crate::mesh3d::{TetMesh, NONE};
-
-const BUFFER: usize = 1 << 16;
 
 fn invalid(message: String) -> io::Error {
     io::Error::new(io::ErrorKind::InvalidData, message)
@@ -37,24 +36,21 @@ pub fn write_node<W: Write>(out: W, mesh: &TetMesh, base: u32, markers: bool) ->
             mesh.vertices.len(),
         )?;
     }
-    let mut w = BufWriter::with_capacity(BUFFER, out);
-    writeln!(w, "{} 3 0 {}", mesh.vertices.len(), markers as u8)?;
+    let mut w = Out::new(out);
+    w.uint(mesh.vertices.len() as u64)
+        .uint(3)
+        .uint(0)
+        .uint(markers as u64)
+        .end_line()?;
     let b = base as u64;
     for (i, p) in mesh.vertices.iter().enumerate() {
-        write!(
-            w,
-            "{} {} {} {}",
-            i as u64 + b,
-            Real(p[0]),
-            Real(p[1]),
-            Real(p[2])
-        )?;
+        w.uint(i as u64 + b).real(p[0]).real(p[1]).real(p[2]);
         if markers {
-            write!(w, " {}", mesh.vertex_markers[i])?;
+            w.int(mesh.vertex_markers[i] as i64);
         }
-        w.write_all(b"\n")?;
+        w.end_line()?;
     }
-    w.flush()
+    w.finish()
 }
 
 /// Writes the `.ele` file of `mesh`: header `n 4 a` (`a` is 1 when the mesh carries regional
@@ -66,25 +62,24 @@ pub fn write_ele<W: Write>(out: W, mesh: &TetMesh, base: u32) -> io::Result<()> 
     if with_attr {
         check_len("tetrahedron attribute", mesh.tet_attributes.len(), nt)?;
     }
-    let mut w = BufWriter::with_capacity(BUFFER, out);
-    writeln!(w, "{nt} 4 {}", with_attr as u8)?;
+    let mut w = Out::new(out);
+    w.uint(nt as u64)
+        .uint(4)
+        .uint(with_attr as u64)
+        .end_line()?;
     let b = base as u64;
     for (i, t) in mesh.tets.iter().enumerate() {
-        write!(
-            w,
-            "{} {} {} {} {}",
-            i as u64 + b,
-            t[0] as u64 + b,
-            t[1] as u64 + b,
-            t[2] as u64 + b,
-            t[3] as u64 + b
-        )?;
+        w.uint(i as u64 + b)
+            .uint(t[0] as u64 + b)
+            .uint(t[1] as u64 + b)
+            .uint(t[2] as u64 + b)
+            .uint(t[3] as u64 + b);
         if with_attr {
-            write!(w, " {}", Real(mesh.tet_attributes[i]))?;
+            w.real(mesh.tet_attributes[i]);
         }
-        w.write_all(b"\n")?;
+        w.end_line()?;
     }
-    w.flush()
+    w.finish()
 }
 
 /// Writes `<count> <markers>` and one `i v.. [marker]` line per simplex.
@@ -94,20 +89,22 @@ fn write_simplices<W: Write, const K: usize>(
     item_markers: Option<&[i32]>,
     base: u32,
 ) -> io::Result<()> {
-    let mut w = BufWriter::with_capacity(BUFFER, out);
-    writeln!(w, "{} {}", items.len(), item_markers.is_some() as u8)?;
+    let mut w = Out::new(out);
+    w.uint(items.len() as u64)
+        .uint(item_markers.is_some() as u64)
+        .end_line()?;
     let b = base as u64;
     for (i, s) in items.iter().enumerate() {
-        write!(w, "{}", i as u64 + b)?;
+        w.uint(i as u64 + b);
         for v in s {
-            write!(w, " {}", *v as u64 + b)?;
+            w.uint(*v as u64 + b);
         }
         if let Some(m) = item_markers {
-            write!(w, " {}", m[i])?;
+            w.int(m[i] as i64);
         }
-        w.write_all(b"\n")?;
+        w.end_line()?;
     }
-    w.flush()
+    w.finish()
 }
 
 /// Writes the `.face` file of `mesh`: its subfaces (boundary faces and faces in facets),
@@ -188,20 +185,17 @@ pub fn write_neigh<W: Write>(out: W, mesh: &TetMesh, base: u32) -> io::Result<()
     check_len("neighbour", mesh.neighbors.len(), mesh.tets.len())?;
     let b = base as i64;
     let id = |n: u32| if n == NONE { -1 } else { n as i64 + b };
-    let mut w = BufWriter::with_capacity(BUFFER, out);
-    writeln!(w, "{} 4", mesh.neighbors.len())?;
+    let mut w = Out::new(out);
+    w.uint(mesh.neighbors.len() as u64).uint(4).end_line()?;
     for (i, n) in mesh.neighbors.iter().enumerate() {
-        writeln!(
-            w,
-            "{} {} {} {} {}",
-            i as i64 + b,
-            id(n[0]),
-            id(n[1]),
-            id(n[2]),
-            id(n[3])
-        )?;
+        w.int(i as i64 + b)
+            .int(id(n[0]))
+            .int(id(n[1]))
+            .int(id(n[2]))
+            .int(id(n[3]))
+            .end_line()?;
     }
-    w.flush()
+    w.finish()
 }
 
 /// Writes a PLC as a self-contained `.poly` file numbered from `base`: the inverse of
@@ -221,67 +215,58 @@ pub fn write_plc_poly<W: Write>(out: W, plc: &Plc, base: u32) -> io::Result<()> 
         check_len("point marker", plc.point_markers.len(), np)?;
     }
     let b = base as u64;
-    let mut w = BufWriter::with_capacity(BUFFER, out);
-    writeln!(w, "{np} 3 0 {}", markers as u8)?;
+    let mut w = Out::new(out);
+    w.uint(np as u64)
+        .uint(3)
+        .uint(0)
+        .uint(markers as u64)
+        .end_line()?;
     for (i, p) in plc.points.iter().enumerate() {
-        write!(
-            w,
-            "{} {} {} {}",
-            i as u64 + b,
-            Real(p[0]),
-            Real(p[1]),
-            Real(p[2])
-        )?;
+        w.uint(i as u64 + b).real(p[0]).real(p[1]).real(p[2]);
         if markers {
-            write!(w, " {}", plc.point_markers[i])?;
+            w.int(plc.point_markers[i] as i64);
         }
-        w.write_all(b"\n")?;
+        w.end_line()?;
     }
-    writeln!(w, "{} 1", plc.facets.len())?;
+    w.uint(plc.facets.len() as u64).uint(1).end_line()?;
     for f in &plc.facets {
-        writeln!(w, "{} {} {}", f.polygons.len(), f.holes.len(), f.marker)?;
+        w.uint(f.polygons.len() as u64)
+            .uint(f.holes.len() as u64)
+            .int(f.marker as i64)
+            .end_line()?;
         for poly in &f.polygons {
-            write!(w, "{}", poly.len())?;
+            w.uint(poly.len() as u64);
             for v in poly {
-                write!(w, " {}", *v as u64 + b)?;
+                w.uint(*v as u64 + b);
             }
-            w.write_all(b"\n")?;
+            w.end_line()?;
         }
-        for (j, h) in f.holes.iter().enumerate() {
-            writeln!(
-                w,
-                "{} {} {} {}",
-                j as u64 + b,
-                Real(h[0]),
-                Real(h[1]),
-                Real(h[2])
-            )?;
-        }
+        write_points(&mut w, &f.holes, b)?;
     }
-    writeln!(w, "{}", plc.holes.len())?;
-    for (i, h) in plc.holes.iter().enumerate() {
-        writeln!(
-            w,
-            "{} {} {} {}",
-            i as u64 + b,
-            Real(h[0]),
-            Real(h[1]),
-            Real(h[2])
-        )?;
-    }
-    writeln!(w, "{}", plc.regions.len())?;
+    w.uint(plc.holes.len() as u64).end_line()?;
+    write_points(&mut w, &plc.holes, b)?;
+    w.uint(plc.regions.len() as u64).end_line()?;
     for (i, r) in plc.regions.iter().enumerate() {
         // A negative volume is TetGen's "no bound".
-        writeln!(
-            w,
-            "{} {} {} {} {} {}",
-            i as u64 + b,
-            Real(r.point[0]),
-            Real(r.point[1]),
-            Real(r.point[2]),
-            Real(r.attribute),
-            Real(r.max_volume.unwrap_or(-1.0))
-        )?;
+        w.uint(i as u64 + b)
+            .real(r.point[0])
+            .real(r.point[1])
+            .real(r.point[2])
+            .real(r.attribute)
+            .real(r.max_volume.unwrap_or(-1.0))
+            .end_line()?;
     }
-    w.flush()
+    w.finish()
+}
+
+/// Writes `i x y z` lines (hole seeds), numbered from `base`.
+fn write_points<W: Write>(w: &mut Out<W>, points: &[[f64; 3]], base: u64) -> io::Result<()> {
+    for (i, p) in points.iter().enumerate() {
+        w.uint(i as u64 + base)
+            .real(p[0])
+            .real(p[1])
+            .real(p[2])
+            .end_line()?;
+    }
+    Ok(())
 }

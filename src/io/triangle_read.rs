@@ -15,7 +15,7 @@
 use std::path::Path;
 
 use super::error::ParseError;
-use super::lines::{Record, Records};
+use super::lines::{capacity, read_text, Record, Records};
 use crate::input::{Pslg, Region};
 
 /// The contents of a Triangle `.node` or `.poly` file.
@@ -72,12 +72,6 @@ struct Header {
     count: usize,
     num_attributes: usize,
     markers: bool,
-}
-
-/// Caps pre-allocation by what the text can possibly hold, so that a corrupt count cannot
-/// request gigabytes before the short file is noticed.
-fn capacity(count: usize, text: &str) -> usize {
-    count.min(text.len() / 2 + 1)
 }
 
 fn parse_header(rec: &Record<'_>, what: &str) -> Result<Header, ParseError> {
@@ -328,19 +322,6 @@ pub fn parse_ele(
         num_attributes: na,
         attributes,
     })
-}
-
-/// Reads a whole file as text; invalid UTF-8 (say, Latin-1 in a comment) is replaced, not
-/// rejected, because only ASCII matters to the formats.
-fn read_text(path: &Path) -> Result<String, ParseError> {
-    match std::fs::read(path) {
-        Ok(bytes) => Ok(String::from_utf8_lossy(&bytes).into_owned()),
-        Err(e) => Err(ParseError::new(
-            &path.display().to_string(),
-            0,
-            format!("cannot read: {e}"),
-        )),
-    }
 }
 
 /// Reads a `.node` file.

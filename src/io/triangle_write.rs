@@ -1,16 +1,15 @@
 //! Writers for Triangle's output formats: `.node`, `.ele`, `.poly`, `.edge`, `.neigh`.
 //!
 //! Layouts follow Triangle's output (one item per line, numbered from `base`); fields are
-//! separated by single spaces and floats are written with [`Real`] so that they read back
-//! exactly. Every writer buffers internally, so passing a bare `File` is fine.
+//! separated by single spaces and floats are written as [`Real`](super::Real) writes them, so
+//! that they read back exactly. Every writer buffers internally (in large blocks, see
+//! [`Out`]), so passing a bare `File` is fine.
 
-use std::io::{self, BufWriter, Write};
+use std::io::{self, Write};
 
-use super::numfmt::Real;
+use super::numfmt::Out;
 use crate::input::{Pslg, Region};
 use crate::mesh2d::{TriMesh, NONE};
-
-const BUFFER: usize = 1 << 16;
 
 fn invalid(message: String) -> io::Error {
     io::Error::new(io::ErrorKind::InvalidData, message)
@@ -18,20 +17,21 @@ fn invalid(message: String) -> io::Error {
 
 /// Writes the `.node` file of `mesh`: header `n 2 0 1`, then `i x y marker` per vertex.
 pub fn write_node<W: Write>(out: W, mesh: &TriMesh, base: u32) -> io::Result<()> {
-    let mut w = BufWriter::with_capacity(BUFFER, out);
-    writeln!(w, "{} 2 0 1", mesh.vertices.len())?;
+    let mut w = Out::new(out);
+    w.uint(mesh.vertices.len() as u64)
+        .uint(2)
+        .uint(0)
+        .uint(1)
+        .end_line()?;
     for (i, p) in mesh.vertices.iter().enumerate() {
         let marker = mesh.vertex_markers.get(i).copied().unwrap_or(0);
-        writeln!(
-            w,
-            "{} {} {} {}",
-            i as u64 + base as u64,
-            Real(p[0]),
-            Real(p[1]),
-            marker
-        )?;
+        w.uint(i as u64 + base as u64)
+            .real(p[0])
+            .real(p[1])
+            .int(marker as i64)
+            .end_line()?;
     }
-    w.flush()
+    w.finish()
 }
 
 /// Writes the `.ele` file of `mesh`: header `n 3 a` (`a` is 1 when the mesh carries regional
@@ -45,24 +45,23 @@ pub fn write_ele<W: Write>(out: W, mesh: &TriMesh, base: u32) -> io::Result<()> 
             mesh.triangle_attributes.len()
         )));
     }
-    let mut w = BufWriter::with_capacity(BUFFER, out);
-    writeln!(w, "{nt} 3 {}", with_attr as u8)?;
+    let mut w = Out::new(out);
+    w.uint(nt as u64)
+        .uint(3)
+        .uint(with_attr as u64)
+        .end_line()?;
     let b = base as u64;
     for (i, t) in mesh.triangles.iter().enumerate() {
-        write!(
-            w,
-            "{} {} {} {}",
-            i as u64 + b,
-            t[0] as u64 + b,
-            t[1] as u64 + b,
-            t[2] as u64 + b
-        )?;
+        w.uint(i as u64 + b)
+            .uint(t[0] as u64 + b)
+            .uint(t[1] as u64 + b)
+            .uint(t[2] as u64 + b);
         if with_attr {
-            write!(w, " {}", Real(mesh.triangle_attributes[i]))?;
+            w.real(mesh.triangle_attributes[i]);
         }
-        w.write_all(b"\n")?;
+        w.end_line()?;
     }
-    w.flush()
+    w.finish()
 }
 
 /// Writes the output `.poly` file of `mesh`, as Triangle does: header `0 2 0 1` (the vertices
@@ -103,63 +102,57 @@ pub fn write_poly_segments<W: Write>(
             markers.len()
         )));
     }
-    let mut w = BufWriter::with_capacity(BUFFER, out);
-    writeln!(w, "0 2 0 1")?;
+    let mut w = Out::new(out);
+    w.uint(0).uint(2).uint(0).uint(1).end_line()?;
     write_segments(&mut w, segments, markers, true, base)?;
     write_holes_and_regions(&mut w, holes, regions, base)?;
-    w.flush()
+    w.finish()
 }
 
 fn write_segments<W: Write>(
-    w: &mut W,
+    w: &mut Out<W>,
     segments: &[[u32; 2]],
     markers: &[i32],
     with_markers: bool,
     base: u32,
 ) -> io::Result<()> {
     let b = base as u64;
-    writeln!(w, "{} {}", segments.len(), with_markers as u8)?;
+    w.uint(segments.len() as u64)
+        .uint(with_markers as u64)
+        .end_line()?;
     for (i, s) in segments.iter().enumerate() {
-        write!(
-            w,
-            "{} {} {}",
-            i as u64 + b,
-            s[0] as u64 + b,
-            s[1] as u64 + b
-        )?;
+        w.uint(i as u64 + b)
+            .uint(s[0] as u64 + b)
+            .uint(s[1] as u64 + b);
         if with_markers {
-            write!(w, " {}", markers.get(i).copied().unwrap_or(1))?;
+            w.int(markers.get(i).copied().unwrap_or(1) as i64);
         }
-        w.write_all(b"\n")?;
+        w.end_line()?;
     }
     Ok(())
 }
 
 fn write_holes_and_regions<W: Write>(
-    w: &mut W,
+    w: &mut Out<W>,
     holes: &[[f64; 2]],
     regions: &[Region],
     base: u32,
 ) -> io::Result<()> {
     let b = base as u64;
-    writeln!(w, "{}", holes.len())?;
+    w.uint(holes.len() as u64).end_line()?;
     for (i, h) in holes.iter().enumerate() {
-        writeln!(w, "{} {} {}", i as u64 + b, Real(h[0]), Real(h[1]))?;
+        w.uint(i as u64 + b).real(h[0]).real(h[1]).end_line()?;
     }
     if !regions.is_empty() {
-        writeln!(w, "{}", regions.len())?;
+        w.uint(regions.len() as u64).end_line()?;
         for (i, r) in regions.iter().enumerate() {
             // A negative area is Triangle's "no bound".
-            let area = r.max_area.unwrap_or(-1.0);
-            writeln!(
-                w,
-                "{} {} {} {} {}",
-                i as u64 + b,
-                Real(r.point[0]),
-                Real(r.point[1]),
-                Real(r.attribute),
-                Real(area)
-            )?;
+            w.uint(i as u64 + b)
+                .real(r.point[0])
+                .real(r.point[1])
+                .real(r.attribute)
+                .real(r.max_area.unwrap_or(-1.0))
+                .end_line()?;
         }
     }
     Ok(())
@@ -171,19 +164,16 @@ pub fn write_edge<W: Write>(out: W, mesh: &TriMesh, base: u32) -> io::Result<()>
     check_neighbors(mesh)?;
     let edges = mesh.edges();
     let b = base as u64;
-    let mut w = BufWriter::with_capacity(BUFFER, out);
-    writeln!(w, "{} 1", edges.len())?;
+    let mut w = Out::new(out);
+    w.uint(edges.len() as u64).uint(1).end_line()?;
     for (i, (e, m)) in edges.iter().enumerate() {
-        writeln!(
-            w,
-            "{} {} {} {}",
-            i as u64 + b,
-            e[0] as u64 + b,
-            e[1] as u64 + b,
-            m
-        )?;
+        w.uint(i as u64 + b)
+            .uint(e[0] as u64 + b)
+            .uint(e[1] as u64 + b)
+            .int(*m as i64)
+            .end_line()?;
     }
-    w.flush()
+    w.finish()
 }
 
 /// Writes the `.neigh` file of `mesh`: header `n 3`, then `i n0 n1 n2` where `nk` is the
@@ -192,12 +182,16 @@ pub fn write_neigh<W: Write>(out: W, mesh: &TriMesh, base: u32) -> io::Result<()
     check_neighbors(mesh)?;
     let b = base as i64;
     let id = |n: u32| if n == NONE { -1 } else { n as i64 + b };
-    let mut w = BufWriter::with_capacity(BUFFER, out);
-    writeln!(w, "{} 3", mesh.neighbors.len())?;
+    let mut w = Out::new(out);
+    w.uint(mesh.neighbors.len() as u64).uint(3).end_line()?;
     for (i, n) in mesh.neighbors.iter().enumerate() {
-        writeln!(w, "{} {} {} {}", i as i64 + b, id(n[0]), id(n[1]), id(n[2]))?;
+        w.int(i as i64 + b)
+            .int(id(n[0]))
+            .int(id(n[1]))
+            .int(id(n[2]))
+            .end_line()?;
     }
-    w.flush()
+    w.finish()
 }
 
 fn check_neighbors(mesh: &TriMesh) -> io::Result<()> {
@@ -231,20 +225,18 @@ pub fn write_pslg_poly<W: Write>(out: W, pslg: &Pslg, base: u32) -> io::Result<(
             pslg.segment_markers.len()
         )));
     }
-    let mut w = BufWriter::with_capacity(BUFFER, out);
-    writeln!(w, "{np} 2 0 {}", point_markers as u8)?;
+    let mut w = Out::new(out);
+    w.uint(np as u64)
+        .uint(2)
+        .uint(0)
+        .uint(point_markers as u64)
+        .end_line()?;
     for (i, p) in pslg.points.iter().enumerate() {
-        write!(
-            w,
-            "{} {} {}",
-            i as u64 + base as u64,
-            Real(p[0]),
-            Real(p[1])
-        )?;
+        w.uint(i as u64 + base as u64).real(p[0]).real(p[1]);
         if point_markers {
-            write!(w, " {}", pslg.point_markers[i])?;
+            w.int(pslg.point_markers[i] as i64);
         }
-        w.write_all(b"\n")?;
+        w.end_line()?;
     }
     write_segments(
         &mut w,
@@ -254,7 +246,7 @@ pub fn write_pslg_poly<W: Write>(out: W, pslg: &Pslg, base: u32) -> io::Result<(
         base,
     )?;
     write_holes_and_regions(&mut w, &pslg.holes, &pslg.regions, base)?;
-    w.flush()
+    w.finish()
 }
 
 #[cfg(test)]

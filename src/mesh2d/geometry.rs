@@ -6,7 +6,7 @@
 //! loops (point location, the cavity search, segment recovery, flips), never virtual ones.
 //! [`Plane`] is the plane of the 2D mesher and of the 3D input checks (a facet's vertices
 //! projected along its dominant normal axis, an exact, sign-preserving map). A facet mesh of
-//! the 3D mesher is the same kind of mesh in the facet's plane (paper §4.2, §6); its geometry
+//! the 3D mesher is the same kind of mesh in the facet's plane (paper §4.2, §6): [`InPlane`]
 //! answers the same questions exactly on the 3D coordinates (orientation of the projection,
 //! the 3D in-circle test), so the trait takes points of any representation.
 //!
@@ -18,7 +18,10 @@
 //! symbolic coordinate; [`Geometry::infinite`] only fills the ghost's coordinate slot and is
 //! never handed to a predicate.
 
-use crate::predicates::{encroaches, incircle, incircle_fast, orient2d, strictly_between};
+use crate::predicates::{
+    encroaches, in_diametral_ball_seg3, incircle, incircle3d, incircle_fast, orient2d,
+    orient2d_proj, proj, strictly_between,
+};
 
 /// Exact predicates on the points of one plane. Signs follow Shewchuk's conventions; every
 /// answer is exact (no epsilon), so the kernel's decisions are consistent.
@@ -85,5 +88,53 @@ impl Geometry for Plane {
     #[inline(always)]
     fn encroaches(&self, a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> bool {
         encroaches(a, b, p)
+    }
+}
+
+/// The plane of a facet of a 3D input, seen along `axis`, its dominant normal axis (paper
+/// §4.2, §6). Points keep their 3D coordinates: orientation is `orient2d` of the projection
+/// that drops `axis` (an affine map: exact and sign-preserving for points of the plane), and
+/// the in-circle test is the 3D one ([`incircle3d`]), so a facet mesh and the 3D mesh see the
+/// same circles; no point is ever rounded into the plane.
+#[derive(Clone, Copy, Debug)]
+pub struct InPlane {
+    /// The coordinate the projection drops.
+    pub axis: usize,
+}
+
+impl InPlane {
+    /// The projection of `p` (see [`proj`]).
+    #[inline(always)]
+    pub fn proj(&self, p: [f64; 3]) -> [f64; 2] {
+        proj(p, self.axis)
+    }
+}
+
+impl Geometry for InPlane {
+    type Point = [f64; 3];
+
+    #[inline(always)]
+    fn infinite(&self) -> [f64; 3] {
+        [f64::INFINITY; 3]
+    }
+
+    #[inline(always)]
+    fn orient(&self, a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
+        orient2d_proj(a, b, c, self.axis)
+    }
+
+    #[inline(always)]
+    fn incircle(&self, a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
+        incircle3d(a, b, c, d)
+    }
+
+    #[inline(always)]
+    fn strictly_between(&self, a: [f64; 3], b: [f64; 3], p: [f64; 3]) -> bool {
+        strictly_between(self.proj(a), self.proj(b), self.proj(p))
+    }
+
+    #[inline(always)]
+    fn encroaches(&self, a: [f64; 3], b: [f64; 3], p: [f64; 3]) -> bool {
+        in_diametral_ball_seg3(a, b, p)
     }
 }

@@ -30,10 +30,12 @@ mod validate;
 mod tests;
 
 /// The incremental 2D kernel (paper §2) for the other layers that triangulate in a plane: the
-/// 3D input checks triangulate each facet's projected vertices with it.
+/// 3D input checks triangulate each facet's projected vertices with it, and the 3D facet
+/// meshes decide with its in-plane geometry.
 pub(crate) mod kernel {
+    pub(crate) use super::geometry::{Geometry, InPlane};
     pub(crate) use super::recover::Recovery;
-    pub(crate) use super::store::{Cdt, Inserted, Seg, EXTERIOR, HOLE, NO_REGION};
+    pub(crate) use super::store::{next, prev, Cdt, Inserted, Seg, EXTERIOR, HOLE, NO_REGION};
     pub(crate) use super::NONE;
 }
 

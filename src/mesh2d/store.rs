@@ -157,7 +157,7 @@ pub(super) struct Scratch {
 }
 
 #[inline]
-pub(super) fn next(i: usize) -> usize {
+pub(crate) fn next(i: usize) -> usize {
     if i == 2 {
         0
     } else {
@@ -166,7 +166,7 @@ pub(super) fn next(i: usize) -> usize {
 }
 
 #[inline]
-pub(super) fn prev(i: usize) -> usize {
+pub(crate) fn prev(i: usize) -> usize {
     if i == 0 {
         2
     } else {

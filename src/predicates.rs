@@ -107,8 +107,18 @@ pub fn strictly_between(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> bool {
 #[inline]
 pub fn orient2d_proj(a: [f64; 3], b: [f64; 3], c: [f64; 3], axis: usize) -> f64 {
     debug_assert!(axis < 3, "axis {axis} is not a coordinate of a 3D point");
-    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
-    orient2d([a[i], a[j]], [b[i], b[j]], [c[i], c[j]])
+    orient2d(proj(a, axis), proj(b, axis), proj(c, axis))
+}
+
+/// The projection of `p` that drops coordinate `axis`, keeping the cyclic order of the other
+/// two (`(y, z)`, `(z, x)` or `(x, y)`), so a plane's orientation seen from `+axis` is kept.
+#[inline(always)]
+pub fn proj(p: [f64; 3], axis: usize) -> [f64; 2] {
+    match axis {
+        0 => [p[1], p[2]],
+        1 => [p[2], p[0]],
+        _ => [p[0], p[1]],
+    }
 }
 
 /// The coordinate axis along which the triangle `abc` projects best: the largest magnitude

@@ -2,7 +2,7 @@
 //! conforming stage, paper Fig. 3 step 2), classification of exterior, holes and regions, then
 //! refinement (step 3) and output.
 
-use super::refine::{Refiner, SegmentSteiner};
+use super::refine::{segment_marker, Piece, Refiner, SegmentSteiner};
 use super::store::{Cdt, Inserted, Mode, Seg, Start, EXTERIOR, HOLE, NO_REGION};
 use super::{Options, TriMesh, NONE};
 use crate::error::{Error, InputError};
@@ -400,14 +400,6 @@ fn insert_points(cdt: &mut Cdt, points: &[[f64; 2]]) -> Result<(), Error> {
     result
 }
 
-/// One piece of an input segment after splitting it at input points lying on it.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Piece {
-    pub a: u32,
-    pub b: u32,
-    pub input: u32,
-}
-
 /// Checks segments against each other (crossings, overlaps) and against points (a point inside a
 /// segment splits it there), with a uniform grid so typical inputs cost near-linear time.
 /// With `split_crossings`, two segments that cross are both split at their intersection point
@@ -699,7 +691,7 @@ fn classify(r: &mut Refiner, pslg: &Pslg, opts: &Options) -> Result<(), Error> {
         }
     }
     let cdt = &mut r.cdt;
-    flood(cdt, &mut stack, EXTERIOR);
+    cdt.flood(&mut stack, EXTERIOR);
     for (i, h) in pslg.holes.iter().enumerate() {
         let t = seed_triangle(cdt, *h).ok_or(InputError::HoleOutsideDomain { hole: i })?;
         match cdt.treg[t as usize] {
@@ -709,7 +701,7 @@ fn classify(r: &mut Refiner, pslg: &Pslg, opts: &Options) -> Result<(), Error> {
         }
         cdt.treg[t as usize] = HOLE;
         stack.push(t);
-        flood(cdt, &mut stack, HOLE);
+        cdt.flood(&mut stack, HOLE);
     }
     for (i, reg) in pslg.regions.iter().enumerate() {
         let t =
@@ -719,7 +711,7 @@ fn classify(r: &mut Refiner, pslg: &Pslg, opts: &Options) -> Result<(), Error> {
         }
         cdt.treg[t as usize] = i as u32;
         stack.push(t);
-        flood(cdt, &mut stack, i as u32);
+        cdt.flood(&mut stack, i as u32);
     }
     Ok(())
 }
@@ -739,26 +731,6 @@ fn seed_triangle(cdt: &Cdt, p: [f64; 2]) -> Option<u32> {
         }
     }
     Some(t)
-}
-
-fn flood(cdt: &mut Cdt, stack: &mut Vec<u32>, label: u32) {
-    while let Some(t) = stack.pop() {
-        for i in 0..3 {
-            let tw = cdt.tn[t as usize][i];
-            if cdt.ts[t as usize][i] != NONE || tw == NONE {
-                continue;
-            }
-            let n = tw / 3;
-            let cur = cdt.treg[n as usize];
-            if cur == label || (label != EXTERIOR && cur == EXTERIOR) {
-                continue;
-            }
-            if label == EXTERIOR || label == HOLE || cur != HOLE {
-                cdt.treg[n as usize] = label;
-                stack.push(n);
-            }
-        }
-    }
 }
 
 /// Builds the output: domain triangles, input vertices at their input index, used Steiner
@@ -896,15 +868,6 @@ fn output(r: &mut Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriM
         segment_markers,
         complete,
     })
-}
-
-/// The marker of input segment `s` (1 when the input gives none, as for Triangle's boundary).
-pub(super) fn segment_marker(pslg: &Pslg, s: usize) -> i32 {
-    if pslg.segment_markers.is_empty() {
-        1
-    } else {
-        pslg.segment_markers[s]
-    }
 }
 
 #[cfg(test)]

@@ -2,11 +2,11 @@
 //! (a segment split at a vertex lying beside it within rounding), when that edge and the ones
 //! behind it may no longer be locally Delaunay.
 
+use super::geometry::Geometry;
 use super::store::{next, prev, Cdt};
 use super::NONE;
-use crate::predicates::{incircle, orient2d};
 
-impl Cdt {
+impl<G: Geometry> Cdt<G> {
     /// Flips edges, starting from half-edge `h`, until every edge reached is a wall, on the
     /// hull or carved boundary, or locally Delaunay (exact in-circle test). The budget is
     /// generous (flips are quadratic at worst); running out leaves a valid triangulation.
@@ -34,11 +34,11 @@ impl Cdt {
             let (p, u, w) = (self.tv[t1][i], self.tv[t1][next(i)], self.tv[t1][prev(i)]);
             let q = self.tv[t2][j];
             let (pp, pu, pw, pq) = (self.p(p), self.p(u), self.p(w), self.p(q));
-            if orient2d(pp, pu, pw) <= 0.0 || incircle(pp, pu, pw, pq) <= 0.0 {
+            if self.geom.orient(pp, pu, pw) <= 0.0 || self.geom.incircle(pp, pu, pw, pq) <= 0.0 {
                 continue;
             }
             // The quadrilateral p, u, q, w must be strictly convex for the flip.
-            if orient2d(pp, pu, pq) <= 0.0 || orient2d(pq, pw, pp) <= 0.0 {
+            if self.geom.orient(pp, pu, pq) <= 0.0 || self.geom.orient(pq, pw, pp) <= 0.0 {
                 continue;
             }
             // Outer edges: A = (w, p) and B = (p, u) of t1; C = (u, q) and D = (q, w) of t2.

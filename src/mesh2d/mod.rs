@@ -8,9 +8,17 @@
 //! then eliminate skinny and oversized triangles (paper Fig. 4, `Provisional` circumcenter /
 //! off-center insertion). With `no_boundary_steiner` (Triangle's `-Y`) boundary segments are
 //! never split and the result is constrained Delaunay.
+//!
+//! The incremental kernel underneath (`store.rs` with `recover.rs` and `flip.rs`: point
+//! location, the Bowyer–Watson cavity, constrained segment recovery and Lawson flips, one
+//! ghost vertex at infinity) is generic over the exact predicates of a `geometry::Geometry`
+//! (paper §2). The mesher's pipeline (`build.rs` → `refine.rs` → `output.rs`) depends on the
+//! kernel, never the other way round; the 3D input checks triangulate facets with the same
+//! kernel (re-exported as `mesh2d::kernel`).
 
 mod build;
 mod flip;
+mod geometry;
 mod kdtree;
 mod output;
 mod recover;
@@ -20,6 +28,16 @@ mod validate;
 
 #[cfg(test)]
 mod tests;
+
+/// The incremental 2D kernel (paper §2) for the other layers that triangulate in a plane: the
+/// 3D input checks triangulate each facet's projected vertices with it, and the 3D facet
+/// meshes decide with its in-plane geometry.
+pub(crate) mod kernel {
+    pub(crate) use super::geometry::{Geometry, InPlane};
+    pub(crate) use super::recover::Recovery;
+    pub(crate) use super::store::{next, prev, Cdt, Inserted, Seg, EXTERIOR, HOLE, NO_REGION};
+    pub(crate) use super::NONE;
+}
 
 use std::fmt;
 use std::sync::Arc;

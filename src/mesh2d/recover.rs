@@ -6,9 +6,9 @@
 //! Nothing changes unless the whole operation can be done: the walk, the retriangulation and
 //! the edge matching are all checked on scratch data before a single triangle is rewritten.
 
-use super::store::{next, prev, Cdt, SegId, TriId, VertexId};
+use super::geometry::Geometry;
+use super::store::{next, prev, Cdt, Scratch, SegId, TriId, VertexId};
 use super::NONE;
-use crate::predicates::{incircle, orient2d, strictly_between};
 
 /// The outcome of [`Cdt::insert_segment`].
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -24,29 +24,12 @@ pub enum Recovery {
     Failed,
 }
 
-/// Reusable buffers, so that recovering many segments allocates nothing after warm-up.
-#[derive(Default)]
-pub struct Scratch {
-    crossed: Vec<TriId>,
-    left: Vec<VertexId>,
-    right: Vec<VertexId>,
-    stack: Vec<(usize, usize)>,
-    tris: Vec<[VertexId; 3]>,
-    /// Old boundary edges: (directed key, outer twin half-edge, segment).
-    border: Vec<(u64, u32, SegId)>,
-    /// New half-edges: (directed key, index into `tris` * 3 + edge).
-    halves: Vec<(u64, u32)>,
-    fan: Vec<TriId>,
-    /// The edge stack of `Cdt::legalize`.
-    pub(super) flips: Vec<u32>,
-}
-
 #[inline]
 fn key(from: VertexId, to: VertexId) -> u64 {
     ((from as u64) << 32) | to as u64
 }
 
-impl Cdt {
+impl<G: Geometry> Cdt<G> {
     /// Collects the live triangles around vertex `a` into `self.rec.fan` (both ways round, so
     /// fans opened by carving are complete). Returns `false` when the fan is inconsistent.
     fn collect_fan(&mut self, a: VertexId) -> bool {
@@ -54,7 +37,7 @@ impl Cdt {
         fan.clear();
         let start = self.vtri[a as usize];
         let ok = start != NONE && self.alive(start) && {
-            let corner = |cdt: &Cdt, t: TriId| cdt.tv[t as usize].iter().position(|&v| v == a);
+            let corner = |cdt: &Self, t: TriId| cdt.tv[t as usize].iter().position(|&v| v == a);
             let budget = self.num_slots() + 3;
             let mut closed = false;
             let mut bad = false;
@@ -144,14 +127,14 @@ impl Cdt {
             }
             for x in [u, w] {
                 let px = self.p(x);
-                if orient2d(pa, pb, px) == 0.0 && strictly_between(pa, pb, px) {
+                if self.geom.orient(pa, pb, px) == 0.0 && self.geom.strictly_between(pa, pb, px) {
                     return Err(Recovery::Through(x));
                 }
             }
             let (pu, pw) = (self.p(u), self.p(w));
-            if orient2d(pa, pu, pw) > 0.0
-                && orient2d(pa, pu, pb) > 0.0
-                && orient2d(pa, pb, pw) > 0.0
+            if self.geom.orient(pa, pu, pw) > 0.0
+                && self.geom.orient(pa, pu, pb) > 0.0
+                && self.geom.orient(pa, pb, pw) > 0.0
             {
                 first = Some((t, k));
                 break;
@@ -194,9 +177,9 @@ impl Cdt {
                 return Ok(());
             }
             let px = self.p(x);
-            let o = orient2d(pa, pb, px);
+            let o = self.geom.orient(pa, pb, px);
             if o == 0.0 {
-                return Err(if strictly_between(pa, pb, px) {
+                return Err(if self.geom.strictly_between(pa, pb, px) {
                     Recovery::Through(x)
                 } else {
                     Recovery::Failed
@@ -237,11 +220,11 @@ impl Cdt {
                 // The vertex whose circle through the base holds no other chain vertex.
                 let mut c = lo + 1;
                 for i in lo + 2..hi {
-                    if incircle(p, q, self.p(chain[c]), self.p(chain[i])) > 0.0 {
+                    if self.geom.incircle(p, q, self.p(chain[c]), self.p(chain[i])) > 0.0 {
                         c = i;
                     }
                 }
-                if orient2d(p, q, self.p(chain[c])) <= 0.0 {
+                if self.geom.orient(p, q, self.p(chain[c])) <= 0.0 {
                     ok = false;
                     break;
                 }

@@ -4,7 +4,6 @@
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, VecDeque};
 
-use super::build::{segment_marker, Piece};
 use super::kdtree::PointTree;
 use super::recover::Recovery;
 use super::store::{
@@ -15,6 +14,23 @@ use crate::error::Error;
 use crate::geometry::{area2, dist2, min_angle_sin2, steiner_point};
 use crate::input::Pslg;
 use crate::predicates::{encroaches, orient2d};
+
+/// One piece of an input segment after splitting it at input points lying on it.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Piece {
+    pub a: u32,
+    pub b: u32,
+    pub input: u32,
+}
+
+/// The marker of input segment `s` (1 when the input gives none, as for Triangle's boundary).
+pub(super) fn segment_marker(pslg: &Pslg, s: usize) -> i32 {
+    if pslg.segment_markers.is_empty() {
+        1
+    } else {
+        pslg.segment_markers[s]
+    }
+}
 
 /// Which segments may receive Steiner points (Triangle's `-Y` and `-YY`).
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]

@@ -1,4 +1,8 @@
-//! The triangulation store and the incremental Bowyer–Watson kernel (paper §2, Fig. 2).
+//! The 2D kernel: the triangulation store and the incremental Bowyer–Watson algorithm (paper
+//! §2, Fig. 2), generic over the exact predicates of a [`Geometry`] and monomorphised for
+//! each (see `geometry.rs`). One point location (a visibility walk), one cavity routine, one
+//! segment recovery (`recover.rs`) and one flip loop (`flip.rs`) serve the 2D mesher and the
+//! 3D input checks' facet triangulations.
 //!
 //! Triangles live in flat arrays indexed by `TriId`; half-edge `3t + i` is the edge of triangle
 //! `t` opposite its vertex `i`, directed counter-clockwise (`v[i+1] → v[i+2]`). The triangulation
@@ -11,8 +15,7 @@
 //! steps 5–6): a `Provisional` insertion aborts and hands the segment back; a `Force` insertion
 //! queues the segment for splitting and continues.
 
-use crate::predicates::{encroaches, incircle, incircle_fast, orient2d, strictly_between};
-
+use super::geometry::{Geometry, Plane};
 use super::NONE;
 
 /// A vertex index.
@@ -80,9 +83,11 @@ pub struct Seg {
 }
 
 /// The triangulation, its segments and reusable scratch space.
-pub struct Cdt {
-    /// Vertex coordinates; the ghost vertex holds infinities.
-    pub pts: Vec<[f64; 2]>,
+pub struct Cdt<G: Geometry = Plane> {
+    /// The exact predicates.
+    pub geom: G,
+    /// Vertex coordinates; the ghost vertex holds [`Geometry::infinite`].
+    pub pts: Vec<G::Point>,
     /// One triangle incident to each vertex (`NONE` before insertion).
     pub vtri: Vec<TriId>,
     /// For vertices on a segment: the input segment they lie on; else `NONE`.
@@ -124,7 +129,7 @@ pub struct Cdt {
     /// Whether the exterior and holes have been carved away.
     pub carved: bool,
     /// Scratch space of constrained segment insertion (`recover.rs`).
-    pub(super) rec: super::recover::Scratch,
+    pub(super) rec: Scratch,
     /// The last triangle created (a walking hint).
     pub hint: TriId,
     /// Scratch of [`Cdt::insert_bulk`]: half-edges still to cross, and the cavity boundary
@@ -133,8 +138,26 @@ pub struct Cdt {
     bulk_bnd: Vec<[u32; 3]>,
 }
 
+/// Reusable buffers of constrained segment insertion (`recover.rs`) and of the flips
+/// (`flip.rs`), so that recovering many segments allocates nothing after warm-up.
+#[derive(Default)]
+pub(super) struct Scratch {
+    pub(super) crossed: Vec<TriId>,
+    pub(super) left: Vec<VertexId>,
+    pub(super) right: Vec<VertexId>,
+    pub(super) stack: Vec<(usize, usize)>,
+    pub(super) tris: Vec<[VertexId; 3]>,
+    /// Old boundary edges: (directed key, outer twin half-edge, segment).
+    pub(super) border: Vec<(u64, u32, SegId)>,
+    /// New half-edges: (directed key, index into `tris` * 3 + edge).
+    pub(super) halves: Vec<(u64, u32)>,
+    pub(super) fan: Vec<TriId>,
+    /// The edge stack of `Cdt::legalize`.
+    pub(super) flips: Vec<u32>,
+}
+
 #[inline]
-pub(super) fn next(i: usize) -> usize {
+pub(crate) fn next(i: usize) -> usize {
     if i == 2 {
         0
     } else {
@@ -143,7 +166,7 @@ pub(super) fn next(i: usize) -> usize {
 }
 
 #[inline]
-pub(super) fn prev(i: usize) -> usize {
+pub(crate) fn prev(i: usize) -> usize {
     if i == 0 {
         2
     } else {
@@ -151,15 +174,24 @@ pub(super) fn prev(i: usize) -> usize {
     }
 }
 
-impl Cdt {
-    /// An empty store for `n` input points (the ghost vertex gets index `n`).
+impl Cdt<Plane> {
+    /// An empty store for `n` input points of the plane (the ghost vertex gets index `n`).
     pub fn new(points: &[[f64; 2]]) -> Cdt {
+        Cdt::with_geometry(Plane, points)
+    }
+}
+
+impl<G: Geometry> Cdt<G> {
+    /// An empty store for `n` input points of geometry `geom` (the ghost vertex gets index
+    /// `n`).
+    pub fn with_geometry(geom: G, points: &[G::Point]) -> Cdt<G> {
         let n = points.len();
         let mut pts = Vec::with_capacity(n + 1 + n / 2);
         pts.extend_from_slice(points);
-        pts.push([f64::INFINITY, f64::INFINITY]);
+        pts.push(geom.infinite());
         let cap = 2 * n + 8;
         Cdt {
+            geom,
             pts,
             vtri: vec![NONE; n + 1],
             vseg: vec![NONE; n + 1],
@@ -211,7 +243,7 @@ impl Cdt {
     }
 
     #[inline]
-    pub(super) fn p(&self, v: VertexId) -> [f64; 2] {
+    pub(super) fn p(&self, v: VertexId) -> G::Point {
         self.pts[v as usize]
     }
 
@@ -229,7 +261,7 @@ impl Cdt {
     }
 
     /// Adds a new vertex (not yet inserted) and returns its id.
-    pub fn push_vertex(&mut self, p: [f64; 2], on_input_seg: u32) -> VertexId {
+    pub fn push_vertex(&mut self, p: G::Point, on_input_seg: u32) -> VertexId {
         let id = self.pts.len() as VertexId;
         self.pts.push(p);
         self.vtri.push(NONE);
@@ -420,10 +452,45 @@ impl Cdt {
         None
     }
 
+    /// The orientation of vertices `a, b, c` (see [`Geometry::orient`]).
+    #[inline]
+    pub fn orient_ids(&self, a: VertexId, b: VertexId, c: VertexId) -> f64 {
+        self.geom.orient(self.p(a), self.p(b), self.p(c))
+    }
+
+    /// The orientation of vertices `a, b` and point `p` (see [`Geometry::orient`]).
+    #[inline]
+    pub fn orient_at(&self, a: VertexId, b: VertexId, p: G::Point) -> f64 {
+        self.geom.orient(self.p(a), self.p(b), p)
+    }
+
+    /// Spreads region label `label` from the triangles on `stack` to every triangle reached
+    /// without crossing a segment (or an open edge). The exterior overrides everything; a
+    /// hole overrides regions; a region never enters the exterior or a hole.
+    pub fn flood(&mut self, stack: &mut Vec<TriId>, label: u32) {
+        while let Some(t) = stack.pop() {
+            for i in 0..3 {
+                let tw = self.tn[t as usize][i];
+                if self.ts[t as usize][i] != NONE || tw == NONE {
+                    continue;
+                }
+                let n = tw / 3;
+                let cur = self.treg[n as usize];
+                if cur == label || (label != EXTERIOR && cur == EXTERIOR) {
+                    continue;
+                }
+                if label == EXTERIOR || label == HOLE || cur != HOLE {
+                    self.treg[n as usize] = label;
+                    stack.push(n);
+                }
+            }
+        }
+    }
+
     /// Whether `p` conflicts with triangle `t`: strictly inside its circumcircle, or, for a
     /// ghost triangle, strictly outside its hull edge or on the open hull edge.
     #[inline]
-    pub fn conflict(&self, t: TriId, p: [f64; 2]) -> bool {
+    pub fn conflict(&self, t: TriId, p: G::Point) -> bool {
         let v = self.tv[t as usize];
         let g = self.ghost;
         if v[0] == g || v[1] == g || v[2] == g {
@@ -436,22 +503,24 @@ impl Cdt {
             };
             let a = self.p(v[next(k)]);
             let b = self.p(v[prev(k)]);
-            let o = orient2d(a, b, p);
-            o > 0.0 || (o == 0.0 && strictly_between(a, b, p))
+            let o = self.geom.orient(a, b, p);
+            o > 0.0 || (o == 0.0 && self.geom.strictly_between(a, b, p))
         } else if self.tflat[t as usize] {
             // A rounding-flat sliver (three points of one input segment): decide with its true
             // orientation, so the cavity search sees the geometry the coordinates really have.
             let (a, b, c) = (self.p(v[0]), self.p(v[1]), self.p(v[2]));
-            let o = orient2d(a, b, c);
+            let o = self.geom.orient(a, b, c);
             if o > 0.0 {
-                incircle(a, b, c, p) > 0.0
+                self.geom.incircle(a, b, c, p) > 0.0
             } else if o < 0.0 {
-                incircle(a, c, b, p) > 0.0
+                self.geom.incircle(a, c, b, p) > 0.0
             } else {
                 false
             }
         } else {
-            incircle(self.p(v[0]), self.p(v[1]), self.p(v[2]), p) > 0.0
+            self.geom
+                .incircle(self.p(v[0]), self.p(v[1]), self.p(v[2]), p)
+                > 0.0
         }
     }
 
@@ -461,7 +530,7 @@ impl Cdt {
     pub fn locate(
         &self,
         start: TriId,
-        p: [f64; 2],
+        p: G::Point,
         stop_at_walls: bool,
     ) -> Result<TriId, Option<SegId>> {
         let mut t = start;
@@ -487,7 +556,7 @@ impl Cdt {
                 let i = (rot + d) % 3;
                 let a = self.p(v[next(i)]);
                 let b = self.p(v[prev(i)]);
-                if orient2d(a, b, p) < 0.0 {
+                if self.geom.orient(a, b, p) < 0.0 {
                     let s = self.ts[t as usize][i];
                     let tw = self.tn[t as usize][i];
                     if (stop_at_walls && s != NONE) || tw == NONE {
@@ -508,7 +577,7 @@ impl Cdt {
 
     /// Finds a live, properly oriented triangle containing `p` (or a ghost in conflict with it)
     /// by scanning every triangle: the fallback when a walk fails.
-    fn scan_locate(&self, p: [f64; 2]) -> Option<TriId> {
+    fn scan_locate(&self, p: G::Point) -> Option<TriId> {
         let mut ghost_hit = None;
         for t in 0..self.tv.len() as TriId {
             if !self.alive(t) {
@@ -521,10 +590,10 @@ impl Cdt {
                 continue;
             }
             let [a, b, c] = self.tv[t as usize].map(|v| self.p(v));
-            if orient2d(a, b, c) > 0.0
-                && orient2d(a, b, p) >= 0.0
-                && orient2d(b, c, p) >= 0.0
-                && orient2d(c, a, p) >= 0.0
+            if self.geom.orient(a, b, c) > 0.0
+                && self.geom.orient(a, b, p) >= 0.0
+                && self.geom.orient(b, c, p) >= 0.0
+                && self.geom.orient(c, a, p) >= 0.0
             {
                 return Some(t);
             }
@@ -591,7 +660,7 @@ impl Cdt {
     /// [`Cdt::conflict`] for triangle corners `v` while no triangle is flat (before any
     /// segment exists).
     #[inline(always)]
-    fn conflict_plain(&self, v: [VertexId; 3], p: [f64; 2]) -> bool {
+    fn conflict_plain(&self, v: [VertexId; 3], p: G::Point) -> bool {
         let g = self.ghost;
         if v[0] == g || v[1] == g || v[2] == g {
             let (a, b) = if v[0] == g {
@@ -602,10 +671,12 @@ impl Cdt {
                 (v[0], v[1])
             };
             let (a, b) = (self.p(a), self.p(b));
-            let o = orient2d(a, b, p);
-            o > 0.0 || (o == 0.0 && strictly_between(a, b, p))
+            let o = self.geom.orient(a, b, p);
+            o > 0.0 || (o == 0.0 && self.geom.strictly_between(a, b, p))
         } else {
-            incircle_fast(self.p(v[0]), self.p(v[1]), self.p(v[2]), p) > 0.0
+            self.geom
+                .incircle_bulk(self.p(v[0]), self.p(v[1]), self.p(v[2]), p)
+                > 0.0
         }
     }
 
@@ -613,7 +684,7 @@ impl Cdt {
     /// when `p` is outside the hull). The edge the walk came in through is not tested again:
     /// `p` lies strictly beyond it (the same exact orientation, seen from the other side).
     /// `None` when the budget runs out.
-    fn walk_plain(&self, start: TriId, p: [f64; 2]) -> Option<TriId> {
+    fn walk_plain(&self, start: TriId, p: G::Point) -> Option<TriId> {
         let g = self.ghost;
         let mut t = start;
         let v = self.tv[t as usize];
@@ -634,7 +705,7 @@ impl Cdt {
             let mut moved = false;
             let mut i = start_edge;
             for _ in 0..3 {
-                if i != from && orient2d(pv[next(i)], pv[prev(i)], p) < 0.0 {
+                if i != from && self.geom.orient(pv[next(i)], pv[prev(i)], p) < 0.0 {
                     let tw = self.tn[t as usize][i];
                     t = tw / 3;
                     from = (tw % 3) as usize;
@@ -766,7 +837,7 @@ impl Cdt {
     /// index); otherwise a new vertex lying on input segment `on_input_seg` (or `NONE`) is added.
     pub fn insert(
         &mut self,
-        p: [f64; 2],
+        p: G::Point,
         start: Start,
         mode: Mode,
         on_input_seg: u32,
@@ -870,7 +941,7 @@ impl Cdt {
                 let s = self.ts[t as usize][i];
                 if s != NONE || tw == NONE {
                     let (a, b) = self.edge_ends(h);
-                    if s != NONE && encroaches(self.p(a), self.p(b), p) {
+                    if s != NONE && self.geom.encroaches(self.p(a), self.p(b), p) {
                         match mode {
                             Mode::Provisional if self.segs[s as usize].fixed => fixed_hit = s,
                             Mode::Provisional => return Inserted::Encroached(s),
@@ -887,7 +958,9 @@ impl Cdt {
                 // (While the input points go in there are no segments and nothing to hide.)
                 let visible = self.segs.is_empty() || {
                     let (a, b) = self.edge_ends(h);
-                    a == self.ghost || b == self.ghost || orient2d(self.p(a), self.p(b), p) >= 0.0
+                    a == self.ghost
+                        || b == self.ghost
+                        || self.geom.orient(self.p(a), self.p(b), p) >= 0.0
                 };
                 if st != outside && visible && self.conflict(n, p) {
                     self.stamp[n as usize] = inside;
@@ -916,8 +989,9 @@ impl Cdt {
         for j in 0..self.boundary.len() {
             let h = self.boundary[j];
             let (q, r) = self.edge_ends(h);
-            let flat =
-                q != self.ghost && r != self.ghost && orient2d(p, self.p(q), self.p(r)) <= 0.0;
+            let flat = q != self.ghost
+                && r != self.ghost
+                && self.geom.orient(p, self.p(q), self.p(r)) <= 0.0;
             let tolerated = flat && !self.carved && self.same_input_segment(on_input_seg, q, r);
             self.bflat.push(tolerated);
             if flat && !tolerated {

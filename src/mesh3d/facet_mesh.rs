@@ -3,15 +3,24 @@
 //! Vertices are global vertex ids (shared with the 3D mesh), so one global insertion order
 //! breaks cocircular ties the same way here and in the 3D mesh (paper Lemma 4.7).
 //!
-//! Decisions stay exact on the 3D coordinates: orientation is `orient2d` of the projection that
-//! drops the facet's dominant normal axis (an affine projection: exact, sign-preserving), and
-//! the in-circle test is the 3D one ([`crate::predicates::incircle3d`]): any sphere through a
-//! triangle's corners cuts the plane in its circumcircle, so the facet mesh and the 3D mesh see
-//! the same circles for coplanar points (paper §6: no rounded map into the plane).
+//! Decisions stay exact on the 3D coordinates: they are the 2D kernel's in-plane geometry
+//! ([`InPlane`]): orientation is `orient2d` of the projection that drops the facet's dominant
+//! normal axis (an affine projection: exact, sign-preserving), and the in-circle test is the 3D
+//! one ([`crate::predicates::incircle3d`]): any sphere through a triangle's corners cuts the
+//! plane in its circumcircle, so the facet mesh and the 3D mesh see the same circles for
+//! coplanar points (paper §6: no rounded map into the plane). A triangle with one corner at
+//! infinity is decided exactly as the kernel decides a ghost triangle.
+//!
+//! The insertion itself (cavity, edge splits, flips) is still this module's own, not the
+//! kernel's `Cdt`: a facet's cavity is not walled by its subsegments (it crosses and reports
+//! them, so that the facet stays conforming Delaunay like the 3D mesh), Steiner points only
+//! reshape the inside of the facet, and the order of the reported subface changes drives the
+//! 3D mesher's queue, so moving it onto the kernel changes the 3D meshes.
 
 use crate::hash::FastMap as HashMap;
 
-use crate::predicates::{in_diametral_ball_seg3, incircle3d, orient2d};
+use crate::mesh2d::kernel::{next, prev, Geometry, InPlane, NONE};
+use crate::predicates::orient2d;
 
 /// Ids of the three corners of the bounding triangle (paper §6: the facet mesh starts from a
 /// large triangle in the facet's plane; triangles touching it are never subfaces).
@@ -31,25 +40,6 @@ const BDIR: [[f64; 2]; 3] = [[-1.0, -1.0], [2.0, -1.0], [-1.0, 4.0]];
 fn is_bound(v: u32) -> bool {
     (BOUND..BOUND + 3).contains(&v)
 }
-const NONE: u32 = u32::MAX;
-
-#[inline]
-fn next(i: usize) -> usize {
-    if i == 2 {
-        0
-    } else {
-        i + 1
-    }
-}
-#[inline]
-fn prev(i: usize) -> usize {
-    if i == 0 {
-        2
-    } else {
-        i - 1
-    }
-}
-
 /// Why an insertion did not happen.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) enum FacetInsertError {
@@ -168,8 +158,8 @@ fn cross_sign(d: [f64; 2], p: [f64; 2], a: [f64; 2]) -> i32 {
 
 /// One facet's Delaunay triangulation.
 pub(crate) struct FacetMesh {
-    /// The coordinate dropped by the projection.
-    pub axis: usize,
+    /// The facet's plane: the exact in-plane predicates on 3D coordinates.
+    geom: InPlane,
     tv: Vec<[u32; 3]>,
     /// `tn[t][i]`: half-edge `3t' + i'` across the edge opposite vertex `i` (`NONE` only on the
     /// bounding triangle's outer edges).
@@ -190,7 +180,7 @@ impl FacetMesh {
     /// A facet mesh projecting along `axis`, holding only the bounding triangle (at infinity).
     pub fn new(axis: usize, outline: Outline) -> FacetMesh {
         let mut fm = FacetMesh {
-            axis,
+            geom: InPlane { axis },
             tv: Vec::new(),
             tn: Vec::new(),
             alive: Vec::new(),
@@ -210,11 +200,7 @@ impl FacetMesh {
 
     #[inline]
     fn proj(&self, p: [f64; 3]) -> [f64; 2] {
-        match self.axis {
-            0 => [p[1], p[2]],
-            1 => [p[2], p[0]],
-            _ => [p[0], p[1]],
-        }
+        self.geom.proj(p)
     }
 
     /// Coordinates of a finite vertex.
@@ -225,12 +211,16 @@ impl FacetMesh {
     }
 
     /// The orientation sign of `(a, b, p)` in projection, `a` and `b` vertex ids (possibly
-    /// corners at infinity), `p` a finite projected point: the exact limit.
-    fn orient(&self, a: u32, b: u32, p: [f64; 2], pts: &[[f64; 3]]) -> f64 {
+    /// corners at infinity), `p` a finite point of the plane: the exact limit.
+    fn orient(&self, a: u32, b: u32, p: [f64; 3], pts: &[[f64; 3]]) -> f64 {
         match (is_bound(a), is_bound(b)) {
-            (false, false) => orient2d(self.pp(a, pts), self.pp(b, pts), p),
-            (false, true) => cross_sign(BDIR[(b - BOUND) as usize], p, self.pp(a, pts)) as f64,
-            (true, false) => -cross_sign(BDIR[(a - BOUND) as usize], p, self.pp(b, pts)) as f64,
+            (false, false) => self.geom.orient(pts[a as usize], pts[b as usize], p),
+            (false, true) => {
+                cross_sign(BDIR[(b - BOUND) as usize], self.proj(p), self.pp(a, pts)) as f64
+            }
+            (true, false) => {
+                -cross_sign(BDIR[(a - BOUND) as usize], self.proj(p), self.pp(b, pts)) as f64
+            }
             (true, true) => {
                 if b - BOUND == (a - BOUND + 1) % 3 {
                     1.0
@@ -314,7 +304,6 @@ impl FacetMesh {
             self.cur = 2;
         }
         let cur = self.cur;
-        let p2 = self.proj(p);
         let mut region = vec![t0];
         self.stamp[t0 as usize] = cur;
         let (mut facing, mut other) = (Vec::new(), Vec::new());
@@ -331,7 +320,7 @@ impl FacetMesh {
                 }
                 if !is_bound(x) && !is_bound(y) && is_subseg(x, y) {
                     let seg = [x.min(y), x.max(y)];
-                    if orient2d(self.pp(x, pts), self.pp(y, pts), p2) <= 0.0 {
+                    if self.geom.orient(pts[x as usize], pts[y as usize], p) <= 0.0 {
                         facing.push(seg);
                     } else {
                         other.push(seg);
@@ -417,14 +406,14 @@ impl FacetMesh {
         match nb {
             0 => {
                 let [a, b, c] = v.map(|x| self.pt(x, pts));
-                incircle3d(a, b, c, p) > 0.0
+                self.geom.incircle(a, b, c, p) > 0.0
             }
             1 => {
                 let k = (0..3).find(|&k| is_bound(v[k])).unwrap_or(0);
-                let (x, y) = (self.pp(v[next(k)], pts), self.pp(v[prev(k)], pts));
-                let p2 = self.proj(p);
-                let o = orient2d(x, y, p2);
-                o > 0.0 || (o == 0.0 && crate::exact::dot_sign_2d(x, y, p2) < 0)
+                // As a ghost triangle of the kernel: beyond its finite edge, or on it.
+                let (x, y) = (self.pt(v[next(k)], pts), self.pt(v[prev(k)], pts));
+                let o = self.geom.orient(x, y, p);
+                o > 0.0 || (o == 0.0 && self.geom.strictly_between(x, y, p))
             }
             2 => {
                 let k = (0..3).find(|&k| !is_bound(v[k])).unwrap_or(0);
@@ -457,7 +446,6 @@ impl FacetMesh {
     }
 
     fn locate(&self, p: [f64; 3], pts: &[[f64; 3]]) -> Option<u32> {
-        let p2 = self.proj(p);
         let mut t = self.last;
         if t == NONE || !self.alive[t as usize] {
             t = (0..self.tv.len() as u32).find(|&t| self.alive[t as usize])?;
@@ -469,7 +457,7 @@ impl FacetMesh {
             rot = (rot + 1) % 3;
             for d in 0..3 {
                 let i = (rot + d) % 3;
-                if self.orient(v[next(i)], v[prev(i)], p2, pts) < 0.0 {
+                if self.orient(v[next(i)], v[prev(i)], p, pts) < 0.0 {
                     let h = self.tn[t as usize][i];
                     if h == NONE {
                         return None; // outside the bounding triangle
@@ -483,7 +471,7 @@ impl FacetMesh {
         (0..self.tv.len() as u32).find(|&t| {
             self.alive[t as usize] && {
                 let v = self.tv[t as usize];
-                (0..3).all(|i| self.orient(v[next(i)], v[prev(i)], p2, pts) >= 0.0)
+                (0..3).all(|i| self.orient(v[next(i)], v[prev(i)], p, pts) >= 0.0)
             }
         })
     }
@@ -605,7 +593,7 @@ impl FacetMesh {
                     if h != NONE && self.stamp[(h / 3) as usize] == cur {
                         continue;
                     }
-                    let o = self.orient(v[next(i)], v[prev(i)], self.proj(p), pts);
+                    let o = self.orient(v[next(i)], v[prev(i)], p, pts);
                     if o <= 0.0 {
                         if seeds.contains(&t) {
                             if h == NONE {
@@ -670,7 +658,7 @@ impl FacetMesh {
                 } else {
                     if real
                         && is_subseg(x, y)
-                        && in_diametral_ball_seg3(pts[x as usize], pts[y as usize], p)
+                        && self.geom.encroaches(pts[x as usize], pts[y as usize], p)
                     {
                         crossed.push([x, y]);
                     }
@@ -888,8 +876,7 @@ impl FacetMesh {
             if !self.conflict(n, p, pts) {
                 continue;
             }
-            let p2 = self.proj(p);
-            if self.orient(x, q, p2, pts) <= 0.0 || self.orient(q, y, p2, pts) <= 0.0 {
+            if self.orient(x, q, p, pts) <= 0.0 || self.orient(q, y, p, pts) <= 0.0 {
                 continue;
             }
             if is_subseg(x, y) {
@@ -924,7 +911,7 @@ impl FacetMesh {
             if !is_bound(x)
                 && !is_bound(y)
                 && is_subseg(x, y)
-                && in_diametral_ball_seg3(pts[x as usize], pts[y as usize], p)
+                && self.geom.encroaches(pts[x as usize], pts[y as usize], p)
             {
                 let s = if x < y { [x, y] } else { [y, x] };
                 if !change.encroached.contains(&s) {
@@ -1001,8 +988,7 @@ impl FacetMesh {
             if !self.conflict(n, p, pts) {
                 continue;
             }
-            let p2 = self.proj(p);
-            if self.orient(x, q, p2, pts) <= 0.0 || self.orient(q, y, p2, pts) <= 0.0 {
+            if self.orient(x, q, p, pts) <= 0.0 || self.orient(q, y, p, pts) <= 0.0 {
                 continue;
             }
             for tt in [t, n] {
@@ -1060,6 +1046,7 @@ impl FacetMesh {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::predicates::incircle3d;
 
     fn build(pts: &[[f64; 3]], convex: bool) -> FacetMesh {
         let mut fm = FacetMesh::new(

@@ -2,7 +2,7 @@
 //! edges) and each facet's region as triangles on its own vertices, for the intersection
 //! tests.
 
-use super::cdt::{Cdt, CdtError};
+use super::cdt::{CdtError, FacetTriangulation};
 use super::exact3::{collinear, dominant_axis, proj, P3};
 use crate::error::{Error, InputError};
 use crate::input3d::{Facet, Plc};
@@ -44,7 +44,7 @@ struct Scratch {
     global: Vec<u32>,
     projected: Vec<[f64; 2]>,
     seeds: Vec<[f64; 2]>,
-    cdt: Cdt,
+    cdt: FacetTriangulation,
 }
 
 /// Checks every facet on its own and triangulates its region. Polygon indices must already

@@ -10,8 +10,14 @@ Each child reports its RSS just before the call and its peak RSS during the call
 through /proc/self/clear_refs just before the call); the parent also records the child's total
 peak RSS from wait4(). All tools read the same coordinates; `input_hash` proves it.
 
+With --whole-process each case gains a row "idmesh CLI": `target/release/idmesh triangle` run
+as users run it, a whole process on a file (the random points as a .node file written once with
+round-trip-exact decimals, or the .poly file), no output files (`-NEPQ`), timed by the parent's
+wall clock: reading the file is included, unlike the in-process rows and Triangle's call.
+
 Usage: python3 bench/bench2d.py [--quick] [--markdown] [--repeat N] [--cases LIST]
                                 [--poly PATH SWITCHES] [--json OUT] [--no-cgal] [--timeout S]
+                                [--whole-process]
 See bench/README.md.
 """
 
@@ -262,9 +268,9 @@ def ensure_apt_deps():
 
 
 def build_idmesh():
-    log("building idmesh: cargo build --release --example bench2d")
-    r = subprocess.run(["cargo", "build", "--release", "--example", "bench2d", "-q"],
-                       cwd=ROOT, capture_output=True, text=True)
+    log("building idmesh: cargo build --release --example bench2d --bin idmesh")
+    r = subprocess.run(["cargo", "build", "--release", "--example", "bench2d", "--bin", "idmesh",
+                        "-q"], cwd=ROOT, capture_output=True, text=True)
     if r.returncode != 0:
         first = next((ln for ln in r.stderr.splitlines() if ln.startswith("error")), "")
         log(r.stderr[-3000:])
@@ -276,14 +282,45 @@ def build_idmesh():
     return exe, None
 
 
-def build_cgal(workdir):
-    exe = os.path.join(workdir, "cgal_bench2d")
-    if os.path.exists(exe) and os.path.getmtime(exe) >= os.path.getmtime(CGAL_SRC):
-        return exe
-    log("compiling bench/cgal_bench2d.cpp with g++ -O3 (takes ~15 s)")
-    subprocess.check_call(["g++", "-O3", "-DNDEBUG", "-std=c++17", "-o", exe, CGAL_SRC,
-                           "-lgmp", "-lmpfr"])
-    return exe
+def idmesh_cli():
+    """The `idmesh` command line built by build_idmesh (None if missing)."""
+    target = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
+    exe = os.path.join(target, "release", "idmesh")
+    return exe if os.path.exists(exe) else None
+
+
+def write_node(path, xy):
+    """Writes points as a Triangle .node file, 1-based; %.17g reads back bit for bit."""
+    import numpy as np
+    if os.path.exists(path):
+        return
+    log(f"writing {path}")
+    table = np.column_stack([np.arange(1, len(xy) + 1, dtype=np.float64), xy])
+    with open(path + ".tmp", "w") as f:
+        f.write(f"{len(xy)} 2 0 0\n")
+        np.savetxt(f, table, fmt=["%d", "%.17g", "%.17g"])
+    os.replace(path + ".tmp", path)
+
+
+def whole_process(cmd, timeout):
+    """Runs a command line with no output files as users run it; the time is the parent's wall
+    clock around the whole process and the memory is wait4's peak RSS."""
+    with tempfile.TemporaryFile() as err:
+        t0 = time.perf_counter()
+        p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err, cwd=ROOT)
+        status, ru, timed_out = wait_child(p, timeout, 0.005)
+        secs = time.perf_counter() - t0
+        err.seek(0)
+        etext = err.read().decode(errors="replace").strip()
+    if timed_out:
+        return {"error": f"timeout after {timeout:.0f} s"}
+    code = os.waitstatus_to_exitcode(status)
+    if code != 0:
+        return {"error": f"exit {code}: " + " | ".join(etext.splitlines()[-3:])}
+    peak = ru.ru_maxrss
+    return {"tool": "idmesh CLI", "time_s": secs, "vertices": None, "triangles": None,
+            "min_angle": None, "rss_before_kb": 0, "hwm_before_kb": peak, "hwm_after_kb": peak,
+            "hwm_reset": True}
 
 
 # ---------------------------------------------------------------------------------------------
@@ -352,22 +389,26 @@ def wait_for_quiet(max_wait, threshold=0.3):
     return busy
 
 
+def wait_child(p, timeout, poll):
+    """Waits for the Popen `p` with wait4 (for its rusage), killing it after `timeout` seconds.
+    Returns (wait status, rusage, whether it timed out)."""
+    deadline = time.monotonic() + timeout
+    while True:
+        pid, status, ru = os.wait4(p.pid, os.WNOHANG)
+        if pid:
+            return status, ru, False
+        if time.monotonic() > deadline:
+            p.kill()
+            _, status, ru = os.wait4(p.pid, 0)
+            return status, ru, True
+        time.sleep(poll)
+
+
 def run_child(cmd, timeout):
     """Runs cmd in a fresh process; returns (parsed JSON or error dict, child's peak RSS kB)."""
     with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
         p = subprocess.Popen(cmd, stdout=out, stderr=err, cwd=ROOT)
-        deadline = time.monotonic() + timeout
-        timed_out = False
-        while True:
-            pid, status, ru = os.wait4(p.pid, os.WNOHANG)
-            if pid:
-                break
-            if time.monotonic() > deadline:
-                p.kill()
-                pid, status, ru = os.wait4(p.pid, 0)
-                timed_out = True
-                break
-            time.sleep(0.02)
+        status, ru, timed_out = wait_child(p, timeout, 0.02)
         p.returncode = os.waitstatus_to_exitcode(status)
         out.seek(0)
         err.seek(0)
@@ -500,6 +541,16 @@ def note(r):
     return "; ".join(parts)
 
 
+def count(n):
+    return "-" if n is None else "{:,}".format(n)
+
+
+def note_whole(tool):
+    return ("whole process: reads the file, no output files (-NEPQ); peak MB is wait4's, "
+            "which counts the forking script's own RSS too (an upper bound)"
+            if tool == "idmesh CLI" else "")
+
+
 def build_rows(results):
     rows = []
     for case in results:
@@ -514,9 +565,10 @@ def build_rows(results):
             mratio = r["peak_kb"] / bm if bm else None
             rows.append([
                 case["name"], tool, tfmt(r["time_s"]), tfmt(r["best_s"]), fmt(ratio, ".2f"),
-                "{:,}".format(r["vertices"]), "{:,}".format(r["triangles"]),
+                count(r["vertices"]), count(r["triangles"]),
                 fmt(r.get("min_angle"), ".2f"), "%.1f" % (r["peak_kb"] / 1024),
-                fmt(mratio, ".2f"), "%.1f" % (r["total_kb"] / 1024), note(r),
+                fmt(mratio, ".2f"), "%.1f" % (r["total_kb"] / 1024),
+                "; ".join(x for x in (note(r), note_whole(tool)) if x),
             ])
     return rows
 
@@ -581,6 +633,12 @@ def targets(results):
                         f"meshing-call peak ratio {mr:.2f} (target <= 1.2)", mr <= 1.2))
         elif t:
             out.append((f"(4) peak memory, {key}", "idmesh did not run", False))
+    for key in by:
+        w, t = get(key, "idmesh CLI"), get(key, "triangle")
+        if w and t:
+            r = w["time_s"] / t["time_s"]
+            out.append((f"(whole process) {key}: idmesh CLI vs Triangle's call",
+                        f"time ratio {r:.2f} (issue 15 target <= 0.7)", r <= 0.7))
     return out
 
 
@@ -611,6 +669,9 @@ def main():
                     help="print the table of a saved --json run again, without running anything")
     ap.add_argument("--selftest", action="store_true",
                     help="quick consistency checks of the three tools' inputs and outputs")
+    ap.add_argument("--whole-process", action="store_true",
+                    help="add an `idmesh triangle -...NEPQ FILE` row per case: the whole "
+                         "process, reading the file included, no output files")
     ap.add_argument("--child-triangle", nargs=3, metavar=("KIND", "PATH", "SWITCHES"),
                     help=argparse.SUPPRESS)
     a = ap.parse_args()
@@ -647,7 +708,11 @@ def main():
     xy = splitmix_points(n, a.seed)
     xy.astype("<f8").tofile(pts_path)
     pts_hash = input_hash(xy)
+    node_path = os.path.join(a.workdir, f"random_{n}_{a.seed}.node")
+    if a.whole_process:
+        write_node(node_path, xy)
     del xy
+    cli = idmesh_cli() if a.whole_process else None
     hole_path = os.path.join(a.workdir, "square_hole64.poly")
     hp, hs, hh = hole_pslg()
     write_poly(hole_path, hp, hs, hh)
@@ -664,6 +729,7 @@ def main():
                     "triangle -D": (tri_child + ["points", pts_path, "D"]
                                     if not a.no_triangle_D else None),
                     "cgal": [cgal, "dt", pts_path] if cgal else None,
+                    "idmesh CLI": ["whole", cli, "triangle", "-NEPQ", node_path] if cli else None,
                 }})
         elif key in ("hole30", "hole33"):
             ang = key[4:]
@@ -675,6 +741,8 @@ def main():
             if not a.no_triangle_D:
                 tools["triangle -D"] = tri_child + ["poly", hole_path, f"pq{ang}Da{area_s}"]
             tools["cgal"] = ("calibrate", cgal, hole_path, float(ang)) if cgal else None
+            if cli:
+                tools["idmesh CLI"] = ["whole", cli, "triangle", f"-{sw}NEPQ", hole_path]
             cases.append({"key": key, "name": f"hole -{sw}", "hash": hole_hash, "tools": tools,
                           "verify": (hole_path, ang, area_s)})
         else:
@@ -686,6 +754,8 @@ def main():
             "hash": input_hash(d["vertices"], d.get("segments")), "tools": {
                 "idmesh": [idmesh, "file", os.path.abspath(path), sw] if idmesh else None,
                 "triangle": tri_child + ["poly", os.path.abspath(path), sw],
+                "idmesh CLI": (["whole", cli, "triangle", f"-{sw}NEPQ", os.path.abspath(path)]
+                               if cli else None),
             }})
 
     # Check that idmesh's own generators give the same bits as the shared files.
@@ -723,14 +793,20 @@ def main():
                     # readings, so it costs nothing in the figures.
                     cmd = cmd + ["--validate"]
                 busy = wait_for_quiet(a.wait_idle)
-                r, rss = run_child(cmd, a.timeout)
+                if cmd[0] == "whole":
+                    r = whole_process(cmd[1:], a.timeout)
+                    rss = r.get("hwm_after_kb", 0)
+                    r["input_hash"] = case["hash"]  # the same file as the other tools
+                else:
+                    r, rss = run_child(cmd, a.timeout)
                 r["busy_cores_before"] = round(busy, 2)
                 if "error" not in r and r.get("input_hash") != case["hash"]:
                     r = {"error": f"input hash {r.get('input_hash')} != {case['hash']}: "
                                   "this tool meshed different coordinates"}
                 runs[tool].append(r)
                 maxrss[tool] = max(maxrss[tool], rss)
-                msg = r.get("error") or "%.3f s, %d triangles" % (r["time_s"], r["triangles"])
+                msg = r.get("error") or "%.3f s, %s triangles" % (r["time_s"],
+                                                                    r["triangles"] or "?")
                 log(f"   {tool:12s} run {rep + 1}: {msg}")
         if "idmesh" in case["tools"] and not case["tools"]["idmesh"]:
             res["tools"]["idmesh"] = {"error": idmesh_err or "not run"}

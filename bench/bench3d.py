@@ -38,6 +38,13 @@ example  The same for ../shared/data/3d/example.poly (relative to the repository
   --verify the first idmesh mesh of each case goes through ../shared/tools/verify3d.py
   (--require-delaunay, the radius-edge and volume bounds), untimed.
 
+--whole-process adds two rows to the random case, both whole processes on the same .node file
+with no output files, as users time them (issue 15):
+      target/release/idmesh tetgen -NEFQ POINTS.node   ("idmesh CLI -NEFQ")
+      tetgen -NEFQ POINTS.node                         ("tetgen -NEFQ")
+  The time is the parent's wall clock around the process; it includes reading the 1M-point
+  .node file, which the in-process idmesh row does not.
+
 Targets (from the issue): random: idmesh time <= 0.5 x TetGen's, <= 1.0 x CGAL's, and idmesh's
 peak memory <= TetGen's; refinement cases: idmesh time <= 1.0 x TetGen's and tet count <= 1.3 x
 TetGen's.
@@ -45,6 +52,7 @@ TetGen's.
 Usage: python3 bench/bench3d.py [--cases random,cube,example] [--quick] [--points N] [--seed S]
                                 [--repeat K] [--verify] [--quiet] [--markdown] [--no-cgal] [--no-tetgen]
                                 [--json OUT] [--render OUT.json] [--selftest] [--wait-idle S]
+                                [--whole-process]
                                 [--timeout S]
 Inputs, outputs and the CGAL binary go to target/bench3d/.
 """
@@ -686,7 +694,7 @@ def build_rows(res):
     tg_m = tg.get("total_kb") if ok(tg) else None
     cg_t = cg.get("time_s") if ok(cg) else None
     rows = []
-    for tool in ("idmesh", "tetgen", "cgal"):
+    for tool in ("idmesh", "tetgen", "cgal", "idmesh CLI -NEFQ", "tetgen -NEFQ"):
         r = res.get(tool)
         if r is None:
             continue
@@ -697,6 +705,11 @@ def build_rows(res):
         if tool == "tetgen":
             notes.append("time = whole process (read .node, tetrahedralize, write); "
                          "its own 'Delaunay seconds' (CPU): %s" % tfmt(r.get("delaunay_s")))
+        if tool.endswith("-NEFQ"):
+            notes.append("whole process, reading the .node, no output files")
+            other = res.get("tetgen -NEFQ")
+            if tool.startswith("idmesh") and ok(other):
+                notes.append("%.2f x tetgen -NEFQ" % (r["time_s"] / other["time_s"]))
         rows.append([
             tool, tfmt(r["time_s"]), tfmt(r["best_s"]), tfmt(r.get("cpu_s")),
             ratio(r["time_s"], tg_t), ratio(r["time_s"], tg_d), ratio(r["time_s"], cg_t),
@@ -727,6 +740,11 @@ def targets(res):
     if ok(c):
         r = i["time_s"] / c["time_s"]
         out.append(("(2) time vs CGAL", f"ratio {r:.2f} (target <= 1.0)", r <= 1.0))
+    wi, wt = res.get("idmesh CLI -NEFQ"), res.get("tetgen -NEFQ")
+    if ok(wi) and ok(wt):
+        r = wi["time_s"] / wt["time_s"]
+        out.append(("(whole process) idmesh CLI -NEFQ vs tetgen -NEFQ",
+                    f"ratio {r:.2f} (issue 15 target <= 0.4)", r <= 0.4))
     return out
 
 
@@ -1018,6 +1036,12 @@ def run_random(a, exes, cgal, use_tetgen):
         tools["tetgen"] = lambda rep: tetgen_child(node_path, a.workdir, a.timeout)
     if cgal:
         tools["cgal"] = lambda rep: json_child([cgal, bin_path], a.timeout)
+    if a.whole_process and exes.get("cli"):
+        tools["idmesh CLI -NEFQ"] = lambda rep: whole_process_child(
+            "idmesh CLI -NEFQ", [exes["cli"], "tetgen", "-NEFQ", node_path], n, a.timeout)
+    if a.whole_process and use_tetgen:
+        tools["tetgen -NEFQ"] = lambda rep: whole_process_child(
+            "tetgen -NEFQ", ["tetgen", "-NEFQ", node_path], n, a.timeout)
 
     def check(r):
         if "input_hash" in r and r["input_hash"] != h:
@@ -1032,6 +1056,23 @@ def run_random(a, exes, cgal, use_tetgen):
     if not idmesh:
         results["idmesh"] = {"error": exes.get("error") or "not built"}
     return {"kind": "random", "points": n, "seed": a.seed, "results": results}
+
+
+def whole_process_child(tool, cmd, n, timeout):
+    """One whole-process run with no output files (-NEFQ): the wall clock around the process,
+    reading the .node file included; the peak RSS is wait4's ru_maxrss."""
+    c = run_child(cmd, timeout, cwd=os.path.dirname(cmd[-1]))
+    if c.code != 0:
+        return {"error": failure(c, timeout)}
+    return {
+        "tool": tool,
+        "time_s": c.wall,
+        "process_s": c.wall,
+        "cpu_s": c.ru.ru_utime + c.ru.ru_stime,
+        "input_points": n,
+        "total_kb": c.ru.ru_maxrss,
+        "parent_rss_kb": c.parent_rss_kb,
+    }
 
 
 def run_refine(name, a, exes, use_tetgen):
@@ -1129,6 +1170,9 @@ def main():
                     help="print the table of a saved --json run again, without running anything")
     ap.add_argument("--selftest", action="store_true",
                     help="quick consistency checks of the tools' inputs and outputs")
+    ap.add_argument("--whole-process", action="store_true",
+                    help="random case: also time `idmesh tetgen -NEFQ` and `tetgen -NEFQ` on "
+                         "the .node file as whole processes (reading included, no output)"),
     a = ap.parse_args()
 
     if a.render:
@@ -1143,7 +1187,8 @@ def main():
     want_cgal = want_random and not a.no_cgal
     apt_ok = ensure_apt_deps(want_cgal, not a.no_tetgen)
     use_tetgen = not a.no_tetgen and shutil.which("tetgen") is not None
-    exes, err = build_idmesh(want_random, any(c != "random" for c in cases))
+    exes, err = build_idmesh(want_random, any(c != "random" for c in cases) or
+                             (want_random and a.whole_process))
     if err:
         exes["error"] = err
     cgal = None

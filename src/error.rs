@@ -1,6 +1,7 @@
 //! Errors reported by the mesher. Every error names the offending input item by its index
 //! (0-based, in the order the items were given).
 
+use std::any::Any;
 use std::fmt;
 
 /// A problem with the input PSLG. Indices are 0-based positions in the input arrays.
@@ -262,4 +263,28 @@ impl From<InputError> for Error {
     fn from(e: InputError) -> Self {
         Error::Input(e)
     }
+}
+
+/// The text of a caught panic's payload (the `&str` or `String` that `panic!` carries).
+pub(crate) fn panic_message(payload: &(dyn Any + Send)) -> String {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "unknown panic payload".into())
+}
+
+/// Runs `f`, turning a panic into [`Error::Internal`] (`context` says what was running) so a
+/// bug never takes the host program down. The state `f` worked on is discarded with the
+/// error, so unwind safety of what it borrowed is not a concern.
+pub(crate) fn catch_panic<T>(
+    context: &str,
+    f: impl FnOnce() -> Result<T, Error>,
+) -> Result<T, Error> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).unwrap_or_else(|payload| {
+        Err(Error::Internal(format!(
+            "{context}caught a panic: {}",
+            panic_message(payload.as_ref())
+        )))
+    })
 }

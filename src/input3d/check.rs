@@ -56,19 +56,7 @@ pub(crate) const MAX_COORD3: f64 = 1e50;
 /// Checks a PLC and reports the first problem found, naming the offending item.
 pub fn check_plc(plc: &Plc) -> Result<(), Error> {
     // A bug must never take the host down: a panic becomes `Error::Internal`.
-    match std::panic::catch_unwind(|| check(plc)) {
-        Ok(r) => r,
-        Err(payload) => {
-            let msg = payload
-                .downcast_ref::<&str>()
-                .map(|s| s.to_string())
-                .or_else(|| payload.downcast_ref::<String>().cloned())
-                .unwrap_or_else(|| "unknown panic".into());
-            Err(Error::Internal(format!(
-                "checking the PLC: caught a panic: {msg}"
-            )))
-        }
-    }
+    crate::error::catch_panic("checking the PLC: ", || check(plc))
 }
 
 fn check(plc: &Plc) -> Result<(), Error> {

@@ -113,6 +113,12 @@ typedef struct idm_mesher3d idm_mesher3d;
  */
 typedef struct idm_options2d {
   /**
+   * The size of this struct as the caller was compiled: `sizeof(idm_options2d)`, set by
+   * `idm_options2d_default`. It lets a library and a caller built against different versions of
+   * the header exchange the struct safely (see `idm_options2d_default_sized`).
+   */
+  size_t struct_size;
+  /**
    * Minimum angle in degrees (Triangle's `-q`); `<= 0` means no angle refinement. Must not
    * be NaN. Default 0.
    */
@@ -177,6 +183,12 @@ typedef int32_t (*idm_sizing2d_fn)(void *user,
  * anything else true.
  */
 typedef struct idm_options3d {
+  /**
+   * The size of this struct as the caller was compiled: `sizeof(idm_options3d)`, set by
+   * `idm_options3d_default`. It lets a library and a caller built against different versions of
+   * the header exchange the struct safely (see `idm_options3d_default_sized`).
+   */
+  size_t struct_size;
   /**
    * Maximum radius-edge ratio (TetGen's `-q`); `<= 0` means no quality refinement. Must not
    * be NaN; a positive value below 1 is rejected by refine. Default 0.
@@ -280,13 +292,27 @@ const char *idm_last_error(void);
 const char *idm_version(void);
 
 /**
- * Fills `out` with the default options (the same defaults as the Rust `Options::default()`).
- * NULL is a no-op.
+ * Fills `out` with the default options (the same defaults as the Rust `Options::default()`),
+ * `struct_size` included. NULL is a no-op. Through the header this is a macro that calls
+ * `idm_options2d_default_sized` with the caller's `sizeof(idm_options2d)`, so that a program built against an
+ * older, smaller struct keeps working with a newer library.
  *
  * # Safety
  * `out` must be NULL or valid for writing an `idm_options2d`.
  */
 void idm_options2d_default(struct idm_options2d *out);
+
+/**
+ * `idm_options2d_default` for a caller's struct of `struct_size` bytes (the header's
+ * `idm_options2d_default` macro passes `sizeof(idm_options2d)`): the fields this library knows get their
+ * defaults and `struct_size` gets `struct_size`; bytes beyond them (fields of a newer
+ * header) are zeroed. NULL, or a `struct_size` smaller than any version's struct, is a no-op.
+ *
+ * # Safety
+ * `out` must be NULL or valid for writing `struct_size` bytes.
+ */
+void idm_options2d_default_sized(struct idm_options2d *out,
+                                 size_t struct_size);
 
 /**
  * Creates an empty mesher with default options and stores it in `*out`.
@@ -474,13 +500,27 @@ enum idm_status idm_mesher2d_segments(const struct idm_mesher2d *m,
 enum idm_status idm_mesher2d_validate(const struct idm_mesher2d *m);
 
 /**
- * Fills `out` with the default options (the same defaults as the Rust `Options3::default()`).
- * NULL is a no-op.
+ * Fills `out` with the default options (the same defaults as the Rust `Options3::default()`),
+ * `struct_size` included. NULL is a no-op. Through the header this is a macro that calls
+ * `idm_options3d_default_sized` with the caller's `sizeof(idm_options3d)`, so that a program built against an
+ * older, smaller struct keeps working with a newer library.
  *
  * # Safety
  * `out` must be NULL or valid for writing an `idm_options3d`.
  */
 void idm_options3d_default(struct idm_options3d *out);
+
+/**
+ * `idm_options3d_default` for a caller's struct of `struct_size` bytes (the header's
+ * `idm_options3d_default` macro passes `sizeof(idm_options3d)`): the fields this library knows get their
+ * defaults and `struct_size` gets `struct_size`; bytes beyond them (fields of a newer
+ * header) are zeroed. NULL, or a `struct_size` smaller than any version's struct, is a no-op.
+ *
+ * # Safety
+ * `out` must be NULL or valid for writing `struct_size` bytes.
+ */
+void idm_options3d_default_sized(struct idm_options3d *out,
+                                 size_t struct_size);
 
 /**
  * Creates an empty 3D mesher with default options and stores it in `*out`.
@@ -733,3 +773,12 @@ enum idm_status idm_mesher3d_validate(const struct idm_mesher3d *m);
 #endif  // __cplusplus
 
 #endif  /* IDMESH_H */
+
+/* The options structs grow at their end. These macros pass the caller's sizeof so that a
+   program built against this header keeps working with a newer library: the library fills
+   (and later reads) only the caller's bytes. Outside the include guard, so guarded alone. */
+#ifndef IDMESH_OPTIONS_DEFAULT_MACROS
+#define IDMESH_OPTIONS_DEFAULT_MACROS
+#define idm_options2d_default(out) idm_options2d_default_sized((out), sizeof(struct idm_options2d))
+#define idm_options3d_default(out) idm_options3d_default_sized((out), sizeof(struct idm_options3d))
+#endif

@@ -560,3 +560,100 @@ pub(crate) fn reject_nan(values: &[(&str, f64)]) -> CallResult {
         None => Ok(()),
     }
 }
+
+/// An options struct that can grow: its first field is `size_t struct_size`, the size of the
+/// struct as the caller was compiled, so that a library and a caller built against different
+/// versions of the header agree on how many bytes are theirs.
+///
+/// * A caller's struct smaller than [`Self::BASELINE`] (the size in 0.2.0, the first version
+///   with `struct_size`) is refused: it is not an options struct of any version.
+/// * A smaller struct than this library's (a caller built against an older header) is read
+///   up to its size; the newer fields keep their defaults.
+/// * A larger struct (a caller built against a newer header) is accepted when every byte
+///   beyond the fields this library knows is zero (the newer fields are unset), and refused
+///   with `IDM_ERR_UNSUPPORTED` otherwise: a request this library cannot honour is never
+///   silently dropped.
+///
+/// # Safety
+/// Implementors are `#[repr(C)]`, start with a `usize` `struct_size`, and every bit pattern of
+/// their fields is valid (integers and floats only).
+pub(crate) unsafe trait SizedOptions: Copy {
+    /// The struct's size in the first version that had `struct_size`.
+    const BASELINE: usize;
+    /// The C name, for messages.
+    const NAME: &'static str;
+    /// The defaults, with `struct_size` set to this library's size.
+    fn defaults() -> Self;
+}
+
+/// Fills the caller's options struct of `size` bytes at `out` with the defaults: the bytes this
+/// library knows get the default values (and `struct_size` gets `size`); bytes beyond them, a
+/// newer header's fields, are zeroed. NULL, a misaligned pointer or a size smaller than any
+/// version's struct leave `out` untouched (the `_default` functions return nothing).
+///
+/// # Safety
+/// `out` must be NULL or valid for writing `size` bytes.
+pub(crate) unsafe fn init_options<T: SizedOptions>(out: *mut T, size: usize) {
+    if out.is_null() || !out.is_aligned() || size < T::BASELINE || size > isize::MAX as usize {
+        return;
+    }
+    let mut value = T::defaults();
+    // SAFETY: `T` starts with its `usize` size field (the trait's contract).
+    unsafe { (&mut value as *mut T).cast::<usize>().write(size) };
+    let known = size.min(size_of::<T>());
+    // SAFETY: `out` is valid for `size` bytes (the caller's contract) and `value` for
+    // `size_of::<T>()`; the two do not overlap.
+    unsafe {
+        let dst = out.cast::<u8>();
+        std::ptr::copy_nonoverlapping((&value as *const T).cast::<u8>(), dst, known);
+        std::ptr::write_bytes(dst.add(known), 0, size - known);
+    }
+}
+
+/// Reads the caller's options struct at `ptr` by the rules of [`SizedOptions`].
+///
+/// # Safety
+/// `ptr` must be NULL (an error) or point to a struct of at least `struct_size` readable bytes
+/// whose `struct_size` field is initialised.
+pub(crate) unsafe fn read_options<T: SizedOptions>(ptr: *const T) -> Result<T, Failure> {
+    if ptr.is_null() {
+        return Err(Failure::null("opts"));
+    }
+    if !ptr.is_aligned() {
+        return Err(Failure::invalid("argument `opts` is not suitably aligned"));
+    }
+    // SAFETY: non-null and aligned; the size field is the caller's contract.
+    let size = unsafe { ptr.cast::<usize>().read() };
+    if size < T::BASELINE || size > isize::MAX as usize {
+        return Err(Failure::invalid(format!(
+            "opts.struct_size is {size}, not the size of an {} (this library's is {}): fill \
+             the struct with {}_default first",
+            T::NAME,
+            size_of::<T>(),
+            T::NAME
+        )));
+    }
+    let known = size.min(size_of::<T>());
+    // SAFETY: `size` bytes are readable (the caller's contract).
+    let bytes = unsafe { std::slice::from_raw_parts(ptr.cast::<u8>(), size) };
+    if let Some(k) = bytes[known..].iter().position(|&b| b != 0) {
+        return Err(Failure::new(
+            idm_status::IDM_ERR_UNSUPPORTED,
+            format!(
+                "opts sets a field this library version ({}) does not know (byte {} of a \
+                 {size}-byte {}; this library's is {} bytes)",
+                env!("CARGO_PKG_VERSION"),
+                known + k,
+                T::NAME,
+                size_of::<T>()
+            ),
+        ));
+    }
+    let mut value = T::defaults();
+    // SAFETY: `known` bytes of both are valid and every bit pattern is a valid `T` field value
+    // (the trait's contract); they do not overlap.
+    unsafe {
+        std::ptr::copy_nonoverlapping(bytes.as_ptr(), (&mut value as *mut T).cast::<u8>(), known)
+    };
+    Ok(value)
+}

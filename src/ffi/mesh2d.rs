@@ -5,12 +5,13 @@
 //! 2D lives here; every body goes through the shared machinery of [`super::common`].
 
 use std::ffi::c_void;
+use std::mem::size_of;
 use std::sync::Arc;
 
 use super::common::{
-    append_marked, change, counts, free_handle, idm_status, input_slice, lend, lend_plain,
-    new_handle, optional_slice, positive, reject_nan, reserve, run, scaled, steiner_cap_to_c,
-    validate, CSizing, Failure, Handle,
+    append_marked, change, counts, free_handle, idm_status, init_options, input_slice, lend,
+    lend_plain, new_handle, optional_slice, positive, read_options, reject_nan, reserve, run,
+    scaled, steiner_cap_to_c, validate, CSizing, Failure, Handle, SizedOptions,
 };
 use crate::input::{Pslg, Region};
 use crate::mesh2d::{triangulate, Options, SizingFn, TriMesh};
@@ -21,6 +22,10 @@ use crate::mesh2d::{triangulate, Options, SizingFn, TriMesh};
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct idm_options2d {
+    /// The size of this struct as the caller was compiled: `sizeof(idm_options2d)`, set by
+    /// `idm_options2d_default`. It lets a library and a caller built against different versions of
+    /// the header exchange the struct safely (see `idm_options2d_default_sized`).
+    pub struct_size: usize,
     /// Minimum angle in degrees (Triangle's `-q`); `<= 0` means no angle refinement. Must not
     /// be NaN. Default 0.
     pub min_angle: f64,
@@ -126,30 +131,52 @@ impl CSizing<SizingFn2C> {
     }
 }
 
-/// Fills `out` with the default options (the same defaults as the Rust `Options::default()`).
-/// NULL is a no-op.
+/// Fills `out` with the default options (the same defaults as the Rust `Options::default()`),
+/// `struct_size` included. NULL is a no-op. Through the header this is a macro that calls
+/// `idm_options2d_default_sized` with the caller's `sizeof(idm_options2d)`, so that a program built against an
+/// older, smaller struct keeps working with a newer library.
 ///
 /// # Safety
 /// `out` must be NULL or valid for writing an `idm_options2d`.
 #[no_mangle]
 pub unsafe extern "C" fn idm_options2d_default(out: *mut idm_options2d) {
-    if out.is_null() || !out.is_aligned() {
-        return;
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { init_options(out, size_of::<idm_options2d>()) }
+}
+
+/// `idm_options2d_default` for a caller's struct of `struct_size` bytes (the header's
+/// `idm_options2d_default` macro passes `sizeof(idm_options2d)`): the fields this library knows get their
+/// defaults and `struct_size` gets `struct_size`; bytes beyond them (fields of a newer
+/// header) are zeroed. NULL, or a `struct_size` smaller than any version's struct, is a no-op.
+///
+/// # Safety
+/// `out` must be NULL or valid for writing `struct_size` bytes.
+#[no_mangle]
+pub unsafe extern "C" fn idm_options2d_default_sized(out: *mut idm_options2d, struct_size: usize) {
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { init_options(out, struct_size) }
+}
+
+// SAFETY: `#[repr(C)]`, `struct_size: usize` first, only integer and float fields.
+unsafe impl SizedOptions for idm_options2d {
+    const BASELINE: usize = size_of::<idm_options2d>();
+    const NAME: &'static str = "idm_options2d";
+
+    fn defaults() -> Self {
+        let d = Options::default();
+        idm_options2d {
+            struct_size: size_of::<idm_options2d>(),
+            min_angle: d.min_angle.unwrap_or(0.0),
+            max_area: d.max_area.unwrap_or(0.0),
+            region_max_area: d.region_max_area.into(),
+            region_attributes: d.region_attributes.into(),
+            convex_hull: d.convex_hull.into(),
+            off_centers: d.off_centers.into(),
+            split_crossings: d.split_crossings.into(),
+            no_boundary_steiner: d.no_boundary_steiner.into(),
+            max_steiner: steiner_cap_to_c(d.max_steiner),
+        }
     }
-    let d = Options::default();
-    let value = idm_options2d {
-        min_angle: d.min_angle.unwrap_or(0.0),
-        max_area: d.max_area.unwrap_or(0.0),
-        region_max_area: d.region_max_area.into(),
-        region_attributes: d.region_attributes.into(),
-        convex_hull: d.convex_hull.into(),
-        off_centers: d.off_centers.into(),
-        split_crossings: d.split_crossings.into(),
-        no_boundary_steiner: d.no_boundary_steiner.into(),
-        max_steiner: steiner_cap_to_c(d.max_steiner),
-    };
-    // SAFETY: checked non-null and aligned; validity is the caller's contract.
-    unsafe { out.write(value) };
 }
 
 /// Creates an empty mesher with default options and stores it in `*out`.
@@ -305,7 +332,7 @@ pub unsafe extern "C" fn idm_mesher2d_set_options(
     // SAFETY (all blocks here): the caller's contract, checked as far as possible.
     unsafe {
         change(m, |m| {
-            let o = input_slice(opts, 1, "opts")?[0];
+            let o = read_options(opts)?;
             reject_nan(&[("min_angle", o.min_angle), ("max_area", o.max_area)])?;
             m.opts = Options {
                 min_angle: positive(o.min_angle),
@@ -821,6 +848,58 @@ mod tests {
         assert_eq!(o.max_steiner < 0, d.max_steiner.is_none());
         // The documented values of the header.
         assert_eq!((o.off_centers, o.max_steiner), (1, -1));
+    }
+
+    /// The options struct as a caller built against a newer header sees it: 16 bytes of
+    /// fields this library does not know after the ones it does.
+    #[repr(C, align(8))]
+    struct Bigger {
+        o: idm_options2d,
+        tail: [u8; 16],
+    }
+
+    #[test]
+    fn options_struct_size_is_checked_and_honoured() {
+        let m = Handle::new();
+        let size = std::mem::size_of::<idm_options2d>();
+        let mut o = options(25.0, 0.0);
+        assert_eq!(o.struct_size, size);
+        // A struct that never went through `_default` (a 0.1 caller, or garbage) is refused.
+        o.struct_size = 3;
+        assert_eq!(
+            unsafe { idm_mesher2d_set_options(m.0, &o) },
+            IDM_ERR_INVALID_ARGUMENT
+        );
+        assert!(last_error().contains("struct_size"), "{}", last_error());
+        // A newer caller's larger struct: the unknown tail is zeroed by `_default_sized` and
+        // accepted while zero; a set unknown field is refused, not dropped.
+        let mut b = Bigger {
+            o,
+            tail: [0xa5; 16],
+        };
+        let big = size + 16;
+        unsafe { idm_options2d_default_sized(&mut b.o, big) };
+        assert_eq!((b.o.struct_size, b.tail), (big, [0; 16]));
+        assert_eq!(b.o.off_centers, 1);
+        b.o.min_angle = 20.0;
+        assert_eq!(unsafe { idm_mesher2d_set_options(m.0, &b.o) }, IDM_OK);
+        assert_eq!(unsafe { &*m.0 }.opts.min_angle, Some(20.0));
+        b.tail[5] = 1;
+        assert_eq!(
+            unsafe { idm_mesher2d_set_options(m.0, &b.o) },
+            IDM_ERR_UNSUPPORTED
+        );
+        assert!(last_error().contains("does not know"), "{}", last_error());
+        assert_eq!(
+            unsafe { &*m.0 }.opts.min_angle,
+            Some(20.0),
+            "handle unchanged"
+        );
+        // Too small for any version: `_default_sized` leaves the struct alone.
+        let mut c = options(0.0, 0.0);
+        c.min_angle = 7.0;
+        unsafe { idm_options2d_default_sized(&mut c, 8) };
+        assert_eq!(c.min_angle, 7.0);
     }
 
     #[test]

@@ -6,12 +6,14 @@
 //! statistics); every body goes through the shared machinery of [`super::common`].
 
 use std::ffi::c_void;
+use std::mem::size_of;
 use std::sync::Arc;
 
 use super::common::{
     append_marked, change, check_index_room, check_out, counts, free_handle, guard, idm_status,
-    input_slice, lend, lend_plain, mesh_of, new_handle, optional_slice, positive, reject_nan,
-    reserve, run, scaled, steiner_cap_to_c, validate, CSizing, Failure, Handle,
+    init_options, input_slice, lend, lend_plain, mesh_of, new_handle, optional_slice, positive,
+    read_options, reject_nan, reserve, run, scaled, steiner_cap_to_c, validate, CSizing, Failure,
+    Handle, SizedOptions,
 };
 use crate::input3d::{Facet, Plc, Region3};
 use crate::mesh3d::{delaunay3d, tetrahedralize, Options3, SizingFn3, TetMesh};
@@ -22,6 +24,10 @@ use crate::mesh3d::{delaunay3d, tetrahedralize, Options3, SizingFn3, TetMesh};
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct idm_options3d {
+    /// The size of this struct as the caller was compiled: `sizeof(idm_options3d)`, set by
+    /// `idm_options3d_default`. It lets a library and a caller built against different versions of
+    /// the header exchange the struct safely (see `idm_options3d_default_sized`).
+    pub struct_size: usize,
     /// Maximum radius-edge ratio (TetGen's `-q`); `<= 0` means no quality refinement. Must not
     /// be NaN; a positive value below 1 is rejected by refine. Default 0.
     pub radius_edge: f64,
@@ -143,28 +149,50 @@ impl CSizing<SizingFn3C> {
     }
 }
 
-/// Fills `out` with the default options (the same defaults as the Rust `Options3::default()`).
-/// NULL is a no-op.
+/// Fills `out` with the default options (the same defaults as the Rust `Options3::default()`),
+/// `struct_size` included. NULL is a no-op. Through the header this is a macro that calls
+/// `idm_options3d_default_sized` with the caller's `sizeof(idm_options3d)`, so that a program built against an
+/// older, smaller struct keeps working with a newer library.
 ///
 /// # Safety
 /// `out` must be NULL or valid for writing an `idm_options3d`.
 #[no_mangle]
 pub unsafe extern "C" fn idm_options3d_default(out: *mut idm_options3d) {
-    if out.is_null() || !out.is_aligned() {
-        return;
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { init_options(out, size_of::<idm_options3d>()) }
+}
+
+/// `idm_options3d_default` for a caller's struct of `struct_size` bytes (the header's
+/// `idm_options3d_default` macro passes `sizeof(idm_options3d)`): the fields this library knows get their
+/// defaults and `struct_size` gets `struct_size`; bytes beyond them (fields of a newer
+/// header) are zeroed. NULL, or a `struct_size` smaller than any version's struct, is a no-op.
+///
+/// # Safety
+/// `out` must be NULL or valid for writing `struct_size` bytes.
+#[no_mangle]
+pub unsafe extern "C" fn idm_options3d_default_sized(out: *mut idm_options3d, struct_size: usize) {
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { init_options(out, struct_size) }
+}
+
+// SAFETY: `#[repr(C)]`, `struct_size: usize` first, only integer and float fields.
+unsafe impl SizedOptions for idm_options3d {
+    const BASELINE: usize = size_of::<idm_options3d>();
+    const NAME: &'static str = "idm_options3d";
+
+    fn defaults() -> Self {
+        let d = Options3::default();
+        idm_options3d {
+            struct_size: size_of::<idm_options3d>(),
+            radius_edge: d.radius_edge.unwrap_or(0.0),
+            max_volume: d.max_volume.unwrap_or(0.0),
+            region_max_volume: d.region_max_volume.into(),
+            region_attributes: d.region_attributes.into(),
+            max_steiner: steiner_cap_to_c(d.max_steiner),
+            verbose: d.verbose.into(),
+            keep_surface: d.keep_surface.into(),
+        }
     }
-    let d = Options3::default();
-    let value = idm_options3d {
-        radius_edge: d.radius_edge.unwrap_or(0.0),
-        max_volume: d.max_volume.unwrap_or(0.0),
-        region_max_volume: d.region_max_volume.into(),
-        region_attributes: d.region_attributes.into(),
-        max_steiner: steiner_cap_to_c(d.max_steiner),
-        verbose: d.verbose.into(),
-        keep_surface: d.keep_surface.into(),
-    };
-    // SAFETY: checked non-null and aligned; validity is the caller's contract.
-    unsafe { out.write(value) };
 }
 
 /// Creates an empty 3D mesher with default options and stores it in `*out`.
@@ -400,7 +428,7 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
     // SAFETY (all blocks here): the caller's contract, checked as far as possible.
     unsafe {
         change(m, |m| {
-            let o = input_slice(opts, 1, "opts")?[0];
+            let o = read_options(opts)?;
             reject_nan(&[("radius_edge", o.radius_edge), ("max_volume", o.max_volume)])?;
             m.opts = Options3 {
                 radius_edge: positive(o.radius_edge),

@@ -27,10 +27,16 @@
  *
  * Status codes
  *   - Every function returns an idm_status, except idm_mesherNd_free and
- *     idm_optionsNd_default (void) and idm_last_error and idm_version (strings).
+ *     idm_optionsNd_default(_sized) (void), idm_last_error and idm_version (strings) and
+ *     idm_last_error_item (an idm_input_error).
  *   - IDM_OK (0) means success and clears idm_last_error(). Any other status sets a message
  *     naming the bad argument or input item (e.g. "segment 3 refers to point 17, but there
- *     are only 10 points"). IDM_INCOMPLETE is not an error: the mesh is readable.
+ *     are only 10 points"). After IDM_ERR_INVALID_INPUT, idm_last_error_item gives the
+ *     item's kind and indices. IDM_INCOMPLETE is not an error: the mesh is readable.
+ *
+ * Options
+ *   - Fill idm_optionsNd with idm_optionsNd_default before setting fields: it sets
+ *     struct_size, which lets the structs grow in later versions without breaking binaries.
  *   - On failure, out-parameters are not written and the handle's input is unchanged.
  *   - No call panics, aborts or unwinds into C: internal failures return IDM_ERR_INTERNAL.
  */
@@ -48,6 +54,136 @@
  * The "no index" value of the index arrays (a missing neighbour): `UINT32_MAX`.
  */
 #define IDM_NONE UINT32_MAX
+
+/**
+ * The kind of the bad input item behind an `IDM_ERR_INVALID_INPUT` (see
+ * `idm_last_error_item`). The values are fixed (ABI); 2D and 3D share a kind where the
+ * problem is the same. `item`, `part` and `other` are the indices `idm_last_error_item`
+ * fills (-1 when the kind has none).
+ */
+typedef enum idm_input_error {
+  /**
+   * The last call did not fail with invalid input.
+   */
+  IDM_INPUT_OK = 0,
+  /**
+   * Too few points (3 in 2D, 4 in 3D).
+   */
+  IDM_INPUT_TOO_FEW_POINTS = 1,
+  /**
+   * `item`: a point with a NaN or infinite coordinate.
+   */
+  IDM_INPUT_NON_FINITE_POINT = 2,
+  /**
+   * `item` and `other`: two points with identical coordinates.
+   */
+  IDM_INPUT_DUPLICATE_POINT = 3,
+  /**
+   * All points on one line (2D).
+   */
+  IDM_INPUT_ALL_COLLINEAR = 4,
+  /**
+   * All points in one plane (3D).
+   */
+  IDM_INPUT_ALL_COPLANAR = 5,
+  /**
+   * `item`: a point with a coordinate too large to mesh safely.
+   */
+  IDM_INPUT_COORDINATE_TOO_LARGE = 6,
+  /**
+   * A marker array without one entry per item.
+   */
+  IDM_INPUT_MARKER_COUNT = 7,
+  /**
+   * `item`: a segment referring to point `other`, which does not exist.
+   */
+  IDM_INPUT_SEGMENT_INDEX_OUT_OF_RANGE = 8,
+  /**
+   * `item`: a segment of zero length.
+   */
+  IDM_INPUT_ZERO_LENGTH_SEGMENT = 9,
+  /**
+   * `item` and `other`: two segments joining the same two points.
+   */
+  IDM_INPUT_DUPLICATE_SEGMENT = 10,
+  /**
+   * `item` and `other`: two segments crossing other than at a shared endpoint.
+   */
+  IDM_INPUT_CROSSING_SEGMENTS = 11,
+  /**
+   * `item`: a hole seed with a NaN or infinite coordinate.
+   */
+  IDM_INPUT_NON_FINITE_HOLE = 12,
+  /**
+   * `item`: a hole seed outside the domain (or on a segment).
+   */
+  IDM_INPUT_HOLE_OUTSIDE_DOMAIN = 13,
+  /**
+   * `item`: a region with a NaN or infinite coordinate or attribute, or a bound that is not
+   * positive.
+   */
+  IDM_INPUT_INVALID_REGION = 14,
+  /**
+   * `item`: a region seed outside the domain (or on a segment).
+   */
+  IDM_INPUT_REGION_OUTSIDE_DOMAIN = 15,
+  /**
+   * `item`: a facet with no polygon.
+   */
+  IDM_INPUT_FACET_WITHOUT_POLYGONS = 16,
+  /**
+   * `item`: a facet whose polygon `part` has no vertex.
+   */
+  IDM_INPUT_EMPTY_POLYGON = 17,
+  /**
+   * `item`: a facet whose polygon `part` refers to point `other`, which does not exist.
+   */
+  IDM_INPUT_FACET_INDEX_OUT_OF_RANGE = 18,
+  /**
+   * `item`: a facet whose polygon `part` lists point `other` twice.
+   */
+  IDM_INPUT_REPEATED_VERTEX_IN_POLYGON = 19,
+  /**
+   * `item`: a facet whose loop `part` has all its vertices on one line.
+   */
+  IDM_INPUT_DEGENERATE_POLYGON = 20,
+  /**
+   * `item`: a facet whose vertices all lie on one line.
+   */
+  IDM_INPUT_DEGENERATE_FACET = 21,
+  /**
+   * `item`: a facet that is not planar; point `other` is off its plane.
+   */
+  IDM_INPUT_NON_PLANAR_FACET = 22,
+  /**
+   * `item`: a facet whose hole seed `part` has a NaN or infinite coordinate.
+   */
+  IDM_INPUT_NON_FINITE_FACET_HOLE = 23,
+  /**
+   * `item`: a facet whose hole seed `part` is off the facet's plane.
+   */
+  IDM_INPUT_FACET_HOLE_OFF_PLANE = 24,
+  /**
+   * `item`: a facet whose polygons `part` and `other` (maybe the same one) cross.
+   */
+  IDM_INPUT_SELF_INTERSECTING_FACET = 25,
+  /**
+   * `item`: a segment meeting facet `other` other than at a shared vertex or edge.
+   */
+  IDM_INPUT_SEGMENT_CROSSES_FACET = 26,
+  /**
+   * `item` and `other`: two facets meeting other than along shared edges and vertices.
+   */
+  IDM_INPUT_FACETS_INTERSECT = 27,
+  /**
+   * `item`: a point on facet `other` that is not one of its vertices.
+   */
+  IDM_INPUT_VERTEX_ON_FACET = 28,
+  /**
+   * `item`: a point inside segment `other`.
+   */
+  IDM_INPUT_VERTEX_ON_SEGMENT = 29,
+} idm_input_error;
 
 /**
  * The result of every status-returning call. The values are fixed (ABI).
@@ -290,6 +426,21 @@ const char *idm_last_error(void);
  * The library version ("major.minor.patch"), a static string.
  */
 const char *idm_version(void);
+
+/**
+ * The kind of the bad input item behind this thread's last failure, when that failure was
+ * `IDM_ERR_INVALID_INPUT` (`IDM_INPUT_OK` otherwise, the out-parameters then get -1). Each
+ * out-pointer may be NULL when not wanted; they get the indices the kind documents: `item`
+ * (the point, segment, hole, region or facet the message names first), `part` (a polygon or
+ * hole seed of facet `item`) and `other` (the second item the message names), -1 where the
+ * kind has none. Indices are 0-based in the order the items were added.
+ *
+ * This call reads the last error and leaves it (and `idm_last_error`) as it is.
+ *
+ * # Safety
+ * Each out-pointer must be NULL or valid for writing an `int64_t`.
+ */
+enum idm_input_error idm_last_error_item(int64_t *item, int64_t *part, int64_t *other);
 
 /**
  * Fills `out` with the default options (the same defaults as the Rust `Options::default()`),

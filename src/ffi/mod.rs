@@ -3,7 +3,7 @@
 //! [`common`] holds what every entry point shares, once: the status enum, the panic guard, the
 //! thread-local last error (with the kind and index of a bad input item), pointer and count
 //! checks, the handle lifecycle, lending output arrays, counts, validation and the sizing
-//! callback wrapper. [`mesh2d`] and [`mesh3d`] declare the `idm_mesher2d_*` and
+//! callback wrapper. [`input_error`] reports the kind and index of a bad input item. [`mesh2d`] and [`mesh3d`] declare the `idm_mesher2d_*` and
 //! `idm_mesher3d_*` functions and hold only what differs between the dimensions.
 //!
 //! Conventions shared by every function returning [`idm_status`]:
@@ -23,9 +23,11 @@
 #![deny(unsafe_op_in_unsafe_fn)]
 
 pub mod common;
+pub mod input_error;
 pub mod mesh2d;
 pub mod mesh3d;
 
 pub use common::*;
+pub use input_error::*;
 pub use mesh2d::*;
 pub use mesh3d::*;

@@ -445,8 +445,8 @@ enum idm_input_error idm_last_error_item(int64_t *item, int64_t *part, int64_t *
 /**
  * Fills `out` with the default options (the same defaults as the Rust `Options::default()`),
  * `struct_size` included. NULL is a no-op. Through the header this is a macro that calls
- * `idm_options2d_default_sized` with the caller's `sizeof(idm_options2d)`, so that a program built against an
- * older, smaller struct keeps working with a newer library.
+ * `idm_options2d_default_sized` with the caller's `sizeof(idm_options2d)`, so that a
+ * program built against an older, smaller struct keeps working with a newer library.
  *
  * # Safety
  * `out` must be NULL or valid for writing an `idm_options2d`.
@@ -455,15 +455,15 @@ void idm_options2d_default(struct idm_options2d *out);
 
 /**
  * `idm_options2d_default` for a caller's struct of `struct_size` bytes (the header's
- * `idm_options2d_default` macro passes `sizeof(idm_options2d)`): the fields this library knows get their
- * defaults and `struct_size` gets `struct_size`; bytes beyond them (fields of a newer
- * header) are zeroed. NULL, or a `struct_size` smaller than any version's struct, is a no-op.
+ * `idm_options2d_default` macro passes `sizeof(idm_options2d)`): the fields this library knows
+ * get their defaults and `struct_size` gets `struct_size`; bytes beyond them (fields of a
+ * newer header) are zeroed. NULL, or a `struct_size` smaller than any version's struct, is
+ * a no-op.
  *
  * # Safety
  * `out` must be NULL or valid for writing `struct_size` bytes.
  */
-void idm_options2d_default_sized(struct idm_options2d *out,
-                                 size_t struct_size);
+void idm_options2d_default_sized(struct idm_options2d *out, size_t struct_size);
 
 /**
  * Creates an empty mesher with default options and stores it in `*out`.
@@ -653,8 +653,8 @@ enum idm_status idm_mesher2d_validate(const struct idm_mesher2d *m);
 /**
  * Fills `out` with the default options (the same defaults as the Rust `Options3::default()`),
  * `struct_size` included. NULL is a no-op. Through the header this is a macro that calls
- * `idm_options3d_default_sized` with the caller's `sizeof(idm_options3d)`, so that a program built against an
- * older, smaller struct keeps working with a newer library.
+ * `idm_options3d_default_sized` with the caller's `sizeof(idm_options3d)`, so that a
+ * program built against an older, smaller struct keeps working with a newer library.
  *
  * # Safety
  * `out` must be NULL or valid for writing an `idm_options3d`.
@@ -663,15 +663,15 @@ void idm_options3d_default(struct idm_options3d *out);
 
 /**
  * `idm_options3d_default` for a caller's struct of `struct_size` bytes (the header's
- * `idm_options3d_default` macro passes `sizeof(idm_options3d)`): the fields this library knows get their
- * defaults and `struct_size` gets `struct_size`; bytes beyond them (fields of a newer
- * header) are zeroed. NULL, or a `struct_size` smaller than any version's struct, is a no-op.
+ * `idm_options3d_default` macro passes `sizeof(idm_options3d)`): the fields this library knows
+ * get their defaults and `struct_size` gets `struct_size`; bytes beyond them (fields of a
+ * newer header) are zeroed. NULL, or a `struct_size` smaller than any version's struct, is
+ * a no-op.
  *
  * # Safety
  * `out` must be NULL or valid for writing `struct_size` bytes.
  */
-void idm_options3d_default_sized(struct idm_options3d *out,
-                                 size_t struct_size);
+void idm_options3d_default_sized(struct idm_options3d *out, size_t struct_size);
 
 /**
  * Creates an empty 3D mesher with default options and stores it in `*out`.

@@ -133,8 +133,8 @@ impl CSizing<SizingFn2C> {
 
 /// Fills `out` with the default options (the same defaults as the Rust `Options::default()`),
 /// `struct_size` included. NULL is a no-op. Through the header this is a macro that calls
-/// `idm_options2d_default_sized` with the caller's `sizeof(idm_options2d)`, so that a program built against an
-/// older, smaller struct keeps working with a newer library.
+/// `idm_options2d_default_sized` with the caller's `sizeof(idm_options2d)`, so that a
+/// program built against an older, smaller struct keeps working with a newer library.
 ///
 /// # Safety
 /// `out` must be NULL or valid for writing an `idm_options2d`.
@@ -145,9 +145,10 @@ pub unsafe extern "C" fn idm_options2d_default(out: *mut idm_options2d) {
 }
 
 /// `idm_options2d_default` for a caller's struct of `struct_size` bytes (the header's
-/// `idm_options2d_default` macro passes `sizeof(idm_options2d)`): the fields this library knows get their
-/// defaults and `struct_size` gets `struct_size`; bytes beyond them (fields of a newer
-/// header) are zeroed. NULL, or a `struct_size` smaller than any version's struct, is a no-op.
+/// `idm_options2d_default` macro passes `sizeof(idm_options2d)`): the fields this library knows
+/// get their defaults and `struct_size` gets `struct_size`; bytes beyond them (fields of a
+/// newer header) are zeroed. NULL, or a `struct_size` smaller than any version's struct, is
+/// a no-op.
 ///
 /// # Safety
 /// `out` must be NULL or valid for writing `struct_size` bytes.

@@ -4,7 +4,14 @@
 use std::any::Any;
 use std::fmt;
 
-/// A problem with the input PSLG. Indices are 0-based positions in the input arrays.
+/// Coordinates beyond this magnitude are refused in every dimension
+/// ([`InputError::CoordinateTooLarge`]): the exact insphere test of the 3D mesher (degree 5 in
+/// coordinate differences, plus the splitting products of the exact arithmetic) and the 2D
+/// in-circle test (degree 4) and circumcentres must not overflow.
+pub const MAX_COORD: f64 = 1e50;
+
+/// A problem with the input: a 2D PSLG or a 3D PLC (the C ABI reports each variant as an
+/// `idm_input_error` kind). Indices are 0-based positions in the input arrays.
 #[derive(Debug, Clone, PartialEq)]
 pub enum InputError {
     /// Fewer than three points were given.
@@ -158,7 +165,7 @@ impl fmt::Display for InputError {
             CoordinateTooLarge { point } => {
                 write!(
                     f,
-                    "point {point} has a coordinate too large to mesh safely (|x| > 1e150)"
+                    "point {point} has a coordinate too large to mesh safely (|x| > {MAX_COORD:e})"
                 )
             }
             TooFewPoints3 { count } => write!(f, "need at least 4 points, got {count}"),
@@ -287,4 +294,32 @@ pub(crate) fn catch_panic<T>(
             panic_message(payload.as_ref())
         )))
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_coordinate_limit_message_states_the_limit() {
+        let msg = InputError::CoordinateTooLarge { point: 4 }.to_string();
+        assert!(msg.ends_with("(|x| > 1e50)"), "{msg}");
+        assert_eq!(format!("{MAX_COORD:e}"), "1e50");
+    }
+
+    #[test]
+    fn a_panic_becomes_an_internal_error_with_its_text() {
+        let r: Result<(), Error> = catch_panic("doing x: ", || panic!("boom {}", 7));
+        assert_eq!(
+            r,
+            Err(Error::Internal("doing x: caught a panic: boom 7".into()))
+        );
+        let r: Result<(), Error> = catch_panic("", || std::panic::panic_any(3u8));
+        assert_eq!(
+            r,
+            Err(Error::Internal(
+                "caught a panic: unknown panic payload".into()
+            ))
+        );
+    }
 }

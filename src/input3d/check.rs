@@ -45,13 +45,9 @@ mod intersect;
 mod tests;
 
 use super::Plc;
-use crate::error::{Error, InputError};
+use crate::error::{Error, InputError, MAX_COORD};
 use crate::mesh3d::NONE;
 use crate::predicates::orient3d;
-
-/// Coordinates beyond this magnitude are refused: the exact insphere test of the 3D mesher
-/// (degree 5 in coordinate differences) could overflow. The same bound as `delaunay3d`.
-pub(crate) const MAX_COORD3: f64 = 1e50;
 
 /// Checks a PLC and reports the first problem found, naming the offending item.
 pub fn check_plc(plc: &Plc) -> Result<(), Error> {
@@ -86,7 +82,7 @@ fn check_points(plc: &Plc) -> Result<(), Error> {
         if !p.iter().all(|x| x.is_finite()) {
             return Err(InputError::NonFinitePoint { point: i }.into());
         }
-        if p.iter().any(|x| x.abs() > MAX_COORD3) {
+        if p.iter().any(|x| x.abs() > MAX_COORD) {
             return Err(InputError::CoordinateTooLarge { point: i }.into());
         }
     }

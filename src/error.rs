@@ -15,90 +15,202 @@ pub const MAX_COORD: f64 = 1e50;
 #[derive(Debug, Clone, PartialEq)]
 pub enum InputError {
     /// Fewer than three points were given.
-    TooFewPoints { count: usize },
+    TooFewPoints {
+        /// How many points were given.
+        count: usize,
+    },
     /// A point has a NaN or infinite coordinate.
-    NonFinitePoint { point: usize },
+    NonFinitePoint {
+        /// The point.
+        point: usize,
+    },
     /// Two points have identical coordinates.
-    DuplicatePoint { first: usize, second: usize },
+    DuplicatePoint {
+        /// The first of the two items.
+        first: usize,
+        /// The second of the two items.
+        second: usize,
+    },
     /// All points lie on one line, so there is no triangle to make.
     AllCollinear,
     /// A segment refers to a point index that does not exist.
     SegmentIndexOutOfRange {
+        /// The segment.
         segment: usize,
+        /// The point index it refers to.
         index: u64,
+        /// How many points there are.
         num_points: usize,
     },
     /// A segment joins a point to itself (or to a point with the same coordinates).
-    ZeroLengthSegment { segment: usize },
+    ZeroLengthSegment {
+        /// The segment.
+        segment: usize,
+    },
     /// Two segments join the same pair of points.
-    DuplicateSegment { first: usize, second: usize },
+    DuplicateSegment {
+        /// The first of the two items.
+        first: usize,
+        /// The second of the two items.
+        second: usize,
+    },
     /// Two segments cross or overlap somewhere other than at a shared endpoint.
-    CrossingSegments { first: usize, second: usize },
+    CrossingSegments {
+        /// The first of the two items.
+        first: usize,
+        /// The second of the two items.
+        second: usize,
+    },
     /// A hole seed has a NaN or infinite coordinate.
-    NonFiniteHole { hole: usize },
+    NonFiniteHole {
+        /// The hole seed (of the facet, for facet holes).
+        hole: usize,
+    },
     /// A hole seed lies outside the meshed domain (or on a segment).
-    HoleOutsideDomain { hole: usize },
+    HoleOutsideDomain {
+        /// The hole seed (of the facet, for facet holes).
+        hole: usize,
+    },
     /// A region seed has a NaN or infinite coordinate or attribute, or a maximum area that is
     /// not positive.
-    NonFiniteRegion { region: usize },
+    NonFiniteRegion {
+        /// The region seed.
+        region: usize,
+    },
     /// A region seed lies outside the meshed domain (or on a segment).
-    RegionOutsideDomain { region: usize },
+    RegionOutsideDomain {
+        /// The region seed.
+        region: usize,
+    },
     /// The marker array does not have one entry per item.
     MarkerCountMismatch {
+        /// Which items (points, segments, ...).
         what: &'static str,
+        /// How many markers there should be (one per item).
         expected: usize,
+        /// How many markers were given.
         got: usize,
     },
     /// A coordinate is so large that circumcenters would overflow.
-    CoordinateTooLarge { point: usize },
+    CoordinateTooLarge {
+        /// The point.
+        point: usize,
+    },
     /// Fewer than four points were given to a 3D mesher.
-    TooFewPoints3 { count: usize },
+    TooFewPoints3 {
+        /// How many points were given.
+        count: usize,
+    },
     /// All points lie in one plane, so there is no tetrahedron to make.
     AllCoplanar,
     /// A facet has no polygon.
-    FacetWithoutPolygons { facet: usize },
+    FacetWithoutPolygons {
+        /// The facet.
+        facet: usize,
+    },
     /// A facet polygon has no vertex.
-    EmptyPolygon { facet: usize, polygon: usize },
+    EmptyPolygon {
+        /// The facet.
+        facet: usize,
+        /// The polygon, within the facet.
+        polygon: usize,
+    },
     /// A facet polygon refers to a point index that does not exist.
     FacetIndexOutOfRange {
+        /// The facet.
         facet: usize,
+        /// The polygon, within the facet.
         polygon: usize,
+        /// The point index it refers to.
         index: u64,
+        /// How many points there are.
         num_points: usize,
     },
     /// A facet polygon lists the same point twice.
     RepeatedVertexInPolygon {
+        /// The facet.
         facet: usize,
+        /// The polygon, within the facet.
         polygon: usize,
+        /// The point.
         vertex: usize,
     },
     /// A facet loop (three or more vertices) has all its vertices on one line.
-    DegeneratePolygon { facet: usize, polygon: usize },
+    DegeneratePolygon {
+        /// The facet.
+        facet: usize,
+        /// The polygon, within the facet.
+        polygon: usize,
+    },
     /// All vertices of a facet lie on one line, so it spans no plane.
-    DegenerateFacet { facet: usize },
+    DegenerateFacet {
+        /// The facet.
+        facet: usize,
+    },
     /// A facet vertex lies off the plane of the facet's first three non-collinear vertices.
-    NonPlanarFacet { facet: usize, vertex: usize },
+    NonPlanarFacet {
+        /// The facet.
+        facet: usize,
+        /// The point.
+        vertex: usize,
+    },
     /// A facet hole seed has a NaN or infinite coordinate.
-    NonFiniteFacetHole { facet: usize, hole: usize },
+    NonFiniteFacetHole {
+        /// The facet.
+        facet: usize,
+        /// The hole seed (of the facet, for facet holes).
+        hole: usize,
+    },
     /// A facet hole seed does not lie in the facet's plane.
-    FacetHoleOffPlane { facet: usize, hole: usize },
+    FacetHoleOffPlane {
+        /// The facet.
+        facet: usize,
+        /// The hole seed (of the facet, for facet holes).
+        hole: usize,
+    },
     /// Two edges of one facet's polygons cross (the polygons may be the same one).
     SelfIntersectingFacet {
+        /// The facet.
         facet: usize,
+        /// The first polygon, within the facet.
         first_polygon: usize,
+        /// The second polygon (maybe the same as the first).
         second_polygon: usize,
     },
     /// A 3D region seed has a NaN or infinite coordinate or attribute, or a maximum volume that
     /// is not positive.
-    InvalidRegion3 { region: usize },
+    InvalidRegion3 {
+        /// The region seed.
+        region: usize,
+    },
     /// A segment meets a facet other than at a vertex of both (or along an edge of the facet).
-    SegmentCrossesFacet { segment: usize, facet: usize },
+    SegmentCrossesFacet {
+        /// The segment.
+        segment: usize,
+        /// The facet.
+        facet: usize,
+    },
     /// Two facets meet other than along shared edges and vertices.
-    FacetsIntersect { first: usize, second: usize },
+    FacetsIntersect {
+        /// The first of the two items.
+        first: usize,
+        /// The second of the two items.
+        second: usize,
+    },
     /// A point lies on a facet (inside it or on its boundary) but is not one of its vertices.
-    VertexOnFacet { vertex: usize, facet: usize },
+    VertexOnFacet {
+        /// The point.
+        vertex: usize,
+        /// The facet.
+        facet: usize,
+    },
     /// A point lies in the interior of a segment.
-    VertexOnSegment { vertex: usize, segment: usize },
+    VertexOnSegment {
+        /// The point.
+        vertex: usize,
+        /// The segment.
+        segment: usize,
+    },
 }
 
 /// Any failure of a meshing call.

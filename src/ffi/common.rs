@@ -287,7 +287,7 @@ pub(crate) fn check_index_room(have: usize, extra: usize, what: &str) -> CallRes
 /// Appends the items of `flat` (K values each) to `items` and their markers to `markers`
 /// (`default` for each when the caller gave none), after the index-range and memory checks;
 /// nothing is appended when a check fails.
-pub(crate) fn append_marked<T: Copy, const K: usize>(
+fn append_marked<T: Copy, const K: usize>(
     items: &mut Vec<[T; K]>,
     markers: &mut Vec<i32>,
     flat: &[T],
@@ -305,6 +305,35 @@ pub(crate) fn append_marked<T: Copy, const K: usize>(
         None => markers.resize(items.len(), default),
     }
     Ok(())
+}
+
+/// Picks an item list of a handle and its parallel marker list.
+pub(crate) type MarkedLists<H, T, const K: usize> = fn(&mut H) -> (&mut Vec<[T; K]>, &mut Vec<i32>);
+
+/// The body of the `_add_points` / `_add_segments` calls: appends `count` items of K values
+/// read at `flat` (the argument named `names[0]`), with their markers (NULL: `default` for
+/// each), to the lists `lists` picks (`names[1]` names the items in messages).
+///
+/// # Safety
+/// `m` a live handle; `flat` and (when not NULL) `markers` hold the stated number of values.
+pub(crate) unsafe fn add_marked<H: Handle, T: Copy, const K: usize>(
+    m: *mut H,
+    flat: *const T,
+    count: usize,
+    markers: *const i32,
+    default: i32,
+    names: [&str; 2],
+    lists: MarkedLists<H, T, K>,
+) -> idm_status {
+    // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+    unsafe {
+        change(m, |m| {
+            let flat = input_slice(flat, scaled(count, K, "count")?, names[0])?;
+            let given = optional_slice(markers, count, "markers")?;
+            let (items, item_markers) = lists(m);
+            append_marked(items, item_markers, flat, given, default, names[1])
+        })
+    }
 }
 
 /// What the shared entry-point bodies need to know about a mesher handle.
@@ -656,4 +685,47 @@ pub(crate) unsafe fn read_options<T: SizedOptions>(ptr: *const T) -> Result<T, F
         std::ptr::copy_nonoverlapping(bytes.as_ptr(), (&mut value as *mut T).cast::<u8>(), known)
     };
     Ok(value)
+}
+
+/// Helpers of the per-dimension tests.
+#[cfg(test)]
+pub(crate) mod testing {
+    use super::{free_handle, idm_last_error, idm_status, new_handle, Handle};
+    use std::ffi::CStr;
+
+    /// The current thread's last error as a Rust string.
+    pub(crate) fn last_error() -> String {
+        // SAFETY: idm_last_error never returns NULL and the string lives until the next call.
+        unsafe { CStr::from_ptr(idm_last_error()) }
+            .to_str()
+            .unwrap()
+            .to_string()
+    }
+
+    /// A fresh handle made by `_new`, freed by `_free` on drop so a failing assertion does not
+    /// leak it.
+    pub(crate) struct TestHandle<H: Handle>(pub(crate) *mut H);
+
+    impl<H: Handle> TestHandle<H> {
+        pub(crate) fn new() -> Self {
+            let mut m: *mut H = std::ptr::null_mut();
+            assert_eq!(unsafe { new_handle(&mut m) }, idm_status::IDM_OK);
+            assert!(!m.is_null());
+            TestHandle(m)
+        }
+
+        pub(crate) fn get(&self) -> &H {
+            unsafe { &*self.0 }
+        }
+
+        pub(crate) fn get_mut(&mut self) -> &mut H {
+            unsafe { &mut *self.0 }
+        }
+    }
+
+    impl<H: Handle> Drop for TestHandle<H> {
+        fn drop(&mut self) {
+            unsafe { free_handle(self.0) };
+        }
+    }
 }

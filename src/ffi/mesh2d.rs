@@ -9,7 +9,7 @@ use std::mem::size_of;
 use std::sync::Arc;
 
 use super::common::{
-    append_marked, change, counts, free_handle, idm_status, init_options, input_slice, lend,
+    add_marked, change, counts, free_handle, idm_status, init_options, input_slice, lend,
     lend_plain, new_handle, optional_slice, positive, read_options, reject_nan, reserve, run,
     scaled, steiner_cap_to_c, validate, CSizing, Failure, Handle, SizedOptions,
 };
@@ -213,13 +213,10 @@ pub unsafe extern "C" fn idm_mesher2d_add_points(
     count: usize,
     markers: *const i32,
 ) -> idm_status {
-    // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+    // SAFETY: the caller's contract, forwarded.
     unsafe {
-        change(m, |m| {
-            let xy = input_slice(xy, scaled(count, 2, "count")?, "xy")?;
-            let mk = optional_slice(markers, count, "markers")?;
-            let p = &mut m.pslg;
-            append_marked(&mut p.points, &mut p.point_markers, xy, mk, 0, "points")
+        add_marked(m, xy, count, markers, 0, ["xy", "points"], |m| {
+            (&mut m.pslg.points, &mut m.pslg.point_markers)
         })
     }
 }
@@ -238,20 +235,10 @@ pub unsafe extern "C" fn idm_mesher2d_add_segments(
     count: usize,
     markers: *const i32,
 ) -> idm_status {
-    // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+    // SAFETY: the caller's contract, forwarded.
     unsafe {
-        change(m, |m| {
-            let ab = input_slice(ab, scaled(count, 2, "count")?, "ab")?;
-            let mk = optional_slice(markers, count, "markers")?;
-            let p = &mut m.pslg;
-            append_marked(
-                &mut p.segments,
-                &mut p.segment_markers,
-                ab,
-                mk,
-                1,
-                "segments",
-            )
+        add_marked(m, ab, count, markers, 1, ["ab", "segments"], |m| {
+            (&mut m.pslg.segments, &mut m.pslg.segment_markers)
         })
     }
 }
@@ -528,7 +515,8 @@ pub unsafe extern "C" fn idm_mesher2d_validate(m: *const idm_mesher2d) -> idm_st
 
 #[cfg(test)]
 mod tests {
-    use super::super::common::{guard, idm_last_error, idm_version, mesh_of, IDM_NONE};
+    use super::super::common::testing::{last_error, TestHandle};
+    use super::super::common::{guard, idm_version, mesh_of, IDM_NONE};
     use super::*;
     use crate::NONE;
     use std::ffi::CStr;
@@ -536,32 +524,8 @@ mod tests {
 
     use idm_status::*;
 
-    /// The current thread's last error as a Rust string.
-    fn last_error() -> String {
-        // SAFETY: idm_last_error never returns NULL and the string lives until the next call.
-        unsafe { CStr::from_ptr(idm_last_error()) }
-            .to_str()
-            .unwrap()
-            .to_string()
-    }
-
-    /// A fresh handle, freed on drop so a failing assertion does not leak it.
-    struct Handle(*mut idm_mesher2d);
-
-    impl Handle {
-        fn new() -> Self {
-            let mut m = std::ptr::null_mut();
-            assert_eq!(unsafe { idm_mesher2d_new(&mut m) }, IDM_OK);
-            assert!(!m.is_null());
-            Handle(m)
-        }
-    }
-
-    impl Drop for Handle {
-        fn drop(&mut self) {
-            unsafe { idm_mesher2d_free(self.0) };
-        }
-    }
+    /// A fresh handle, freed on drop.
+    type Handle = TestHandle<idm_mesher2d>;
 
     /// A 10x10 square with a 2x2 square hole in the middle; outer segments marker 1, hole
     /// segments marker 2, point markers 10 + index.

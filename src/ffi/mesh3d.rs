@@ -10,10 +10,10 @@ use std::mem::size_of;
 use std::sync::Arc;
 
 use super::common::{
-    append_marked, change, check_index_room, check_out, counts, free_handle, guard, idm_status,
-    init_options, input_slice, lend, lend_plain, mesh_of, new_handle, optional_slice, positive,
-    read_options, reject_nan, reserve, run, scaled, steiner_cap_to_c, validate, CSizing, Failure,
-    Handle, SizedOptions,
+    add_marked, change, check_index_room, check_out, counts, free_handle, guard, idm_status,
+    init_options, input_slice, lend, lend_plain, mesh_of, new_handle, positive, read_options,
+    reject_nan, reserve, run, scaled, steiner_cap_to_c, validate, CSizing, Failure, Handle,
+    SizedOptions,
 };
 use crate::input3d::{Facet, Plc, Region3};
 use crate::mesh3d::{delaunay3d, tetrahedralize, Options3, SizingFn3, TetMesh};
@@ -229,13 +229,10 @@ pub unsafe extern "C" fn idm_mesher3d_add_points(
     count: usize,
     markers: *const i32,
 ) -> idm_status {
-    // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+    // SAFETY: the caller's contract, forwarded.
     unsafe {
-        change(m, |m| {
-            let xyz = input_slice(xyz, scaled(count, 3, "count")?, "xyz")?;
-            let mk = optional_slice(markers, count, "markers")?;
-            let p = &mut m.plc;
-            append_marked(&mut p.points, &mut p.point_markers, xyz, mk, 0, "points")
+        add_marked(m, xyz, count, markers, 0, ["xyz", "points"], |m| {
+            (&mut m.plc.points, &mut m.plc.point_markers)
         })
     }
 }
@@ -254,20 +251,10 @@ pub unsafe extern "C" fn idm_mesher3d_add_segments(
     count: usize,
     markers: *const i32,
 ) -> idm_status {
-    // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+    // SAFETY: the caller's contract, forwarded.
     unsafe {
-        change(m, |m| {
-            let ab = input_slice(ab, scaled(count, 2, "count")?, "ab")?;
-            let mk = optional_slice(markers, count, "markers")?;
-            let p = &mut m.plc;
-            append_marked(
-                &mut p.segments,
-                &mut p.segment_markers,
-                ab,
-                mk,
-                0,
-                "segments",
-            )
+        add_marked(m, ab, count, markers, 0, ["ab", "segments"], |m| {
+            (&mut m.plc.segments, &mut m.plc.segment_markers)
         })
     }
 }
@@ -701,49 +688,16 @@ pub unsafe extern "C" fn idm_mesher3d_validate(m: *const idm_mesher3d) -> idm_st
 
 #[cfg(test)]
 mod tests {
-    use super::super::common::idm_last_error;
+    use super::super::common::testing::{last_error, TestHandle};
     use super::*;
     use crate::error::Error;
     use crate::predicates::orient3d;
     use crate::NONE;
-    use std::ffi::CStr;
 
     use idm_status::*;
 
-    /// The current thread's last error as a Rust string.
-    fn last_error() -> String {
-        // SAFETY: idm_last_error never returns NULL and the string lives until the next call.
-        unsafe { CStr::from_ptr(idm_last_error()) }
-            .to_str()
-            .unwrap()
-            .to_string()
-    }
-
-    /// A fresh handle, freed on drop so a failing assertion does not leak it.
-    struct Handle(*mut idm_mesher3d);
-
-    impl Handle {
-        fn new() -> Self {
-            let mut m = std::ptr::null_mut();
-            assert_eq!(unsafe { idm_mesher3d_new(&mut m) }, IDM_OK);
-            assert!(!m.is_null());
-            Handle(m)
-        }
-
-        fn get(&self) -> &idm_mesher3d {
-            unsafe { &*self.0 }
-        }
-
-        fn get_mut(&mut self) -> &mut idm_mesher3d {
-            unsafe { &mut *self.0 }
-        }
-    }
-
-    impl Drop for Handle {
-        fn drop(&mut self) {
-            unsafe { idm_mesher3d_free(self.0) };
-        }
-    }
+    /// A fresh handle, freed on drop.
+    type Handle = TestHandle<idm_mesher3d>;
 
     /// The unit cube: corners 0-3 at z = 0 and 4-7 at z = 1 (markers 10 + index), six square
     /// facets with markers 1..=6; the top facet carries a segment and a point of the facet

@@ -354,6 +354,44 @@ pub(crate) trait Handle: Sized {
     fn check(&self, mesh: &Self::Mesh) -> Result<(), String>;
 }
 
+/// Implements [`Handle`] for a handle struct with the fields `$input` (the input, of a
+/// `Default` type), `opts` (the options) and `mesh` (`Option` of the mesh, which has
+/// `complete` and `steiner_points`); `$check` validates `$mesh` for handle `$h`.
+macro_rules! impl_handle {
+    ($handle:ident { $input:ident, $makers:expr }, $mesh_ty:ty, |$h:ident, $mesh:ident| $check:expr) => {
+        impl Handle for $handle {
+            type Mesh = $mesh_ty;
+            const MAKERS: &'static str = $makers;
+
+            fn empty() -> Self {
+                $handle {
+                    $input: Default::default(),
+                    opts: Default::default(),
+                    mesh: None,
+                }
+            }
+
+            fn mesh_slot(&mut self) -> &mut Option<$mesh_ty> {
+                &mut self.mesh
+            }
+
+            fn mesh(&self) -> Option<&$mesh_ty> {
+                self.mesh.as_ref()
+            }
+
+            fn progress(mesh: &$mesh_ty) -> (bool, usize) {
+                (mesh.complete, mesh.steiner_points)
+            }
+
+            fn check(&self, $mesh: &$mesh_ty) -> Result<(), String> {
+                let $h = self;
+                $check
+            }
+        }
+    };
+}
+pub(crate) use impl_handle;
+
 /// Borrows the handle mutably.
 ///
 /// # Safety

@@ -9,8 +9,8 @@ use std::mem::size_of;
 use std::sync::Arc;
 
 use super::common::{
-    add_marked, change, counts, free_handle, idm_status, init_options, input_slice, lend,
-    lend_plain, new_handle, optional_slice, positive, read_options, reject_nan, reserve, run,
+    add_marked, change, counts, free_handle, idm_status, impl_handle, init_options, input_slice,
+    lend, lend_plain, new_handle, optional_slice, positive, read_options, reject_nan, reserve, run,
     scaled, steiner_cap_to_c, validate, CSizing, Failure, Handle, SizedOptions,
 };
 use crate::input::{Pslg, Region};
@@ -84,39 +84,18 @@ pub struct idm_mesher2d {
     mesh: Option<TriMesh>,
 }
 
-impl Handle for idm_mesher2d {
-    type Mesh = TriMesh;
-    const MAKERS: &'static str = "idm_mesher2d_refine";
-
-    fn empty() -> Self {
-        idm_mesher2d {
-            pslg: Pslg::default(),
-            opts: Options::default(),
-            mesh: None,
-        }
-    }
-
-    fn mesh_slot(&mut self) -> &mut Option<TriMesh> {
-        &mut self.mesh
-    }
-
-    fn mesh(&self) -> Option<&TriMesh> {
-        self.mesh.as_ref()
-    }
-
-    fn progress(mesh: &TriMesh) -> (bool, usize) {
-        (mesh.complete, mesh.steiner_points)
-    }
-
-    fn check(&self, mesh: &TriMesh) -> Result<(), String> {
+impl_handle!(
+    idm_mesher2d { pslg, "idm_mesher2d_refine" },
+    TriMesh,
+    |h, mesh| {
         // With -Y boundary segments are kept whole: the mesh is constrained Delaunay.
-        if self.opts.no_boundary_steiner {
+        if h.opts.no_boundary_steiner {
             mesh.validate_constrained()
         } else {
             mesh.validate()
         }
     }
-}
+);
 
 /// The C sizing function of `idm_sizing2d_fn`.
 type SizingFn2C = unsafe extern "C" fn(*mut c_void, *const f64, *const f64, *const f64, f64) -> i32;

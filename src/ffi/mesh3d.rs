@@ -11,9 +11,9 @@ use std::sync::Arc;
 
 use super::common::{
     add_marked, change, check_index_room, check_out, counts, free_handle, guard, idm_status,
-    init_options, input_slice, lend, lend_plain, mesh_of, new_handle, positive, read_options,
-    reject_nan, reserve, run, scaled, steiner_cap_to_c, validate, CSizing, Failure, Handle,
-    SizedOptions,
+    impl_handle, init_options, input_slice, lend, lend_plain, mesh_of, new_handle, positive,
+    read_options, reject_nan, reserve, run, scaled, steiner_cap_to_c, validate, CSizing, Failure,
+    Handle, SizedOptions,
 };
 use crate::input3d::{Facet, Plc, Region3};
 use crate::mesh3d::{delaunay3d, tetrahedralize, Options3, SizingFn3, TetMesh};
@@ -105,34 +105,11 @@ pub struct idm_mesher3d {
     mesh: Option<TetMesh>,
 }
 
-impl Handle for idm_mesher3d {
-    type Mesh = TetMesh;
-    const MAKERS: &'static str = "idm_mesher3d_refine or idm_mesher3d_delaunay";
-
-    fn empty() -> Self {
-        idm_mesher3d {
-            plc: Plc::default(),
-            opts: Options3::default(),
-            mesh: None,
-        }
-    }
-
-    fn mesh_slot(&mut self) -> &mut Option<TetMesh> {
-        &mut self.mesh
-    }
-
-    fn mesh(&self) -> Option<&TetMesh> {
-        self.mesh.as_ref()
-    }
-
-    fn progress(mesh: &TetMesh) -> (bool, usize) {
-        (mesh.complete, mesh.steiner_points)
-    }
-
-    fn check(&self, mesh: &TetMesh) -> Result<(), String> {
-        mesh.validate().map_err(|e| e.to_string())
-    }
-}
+impl_handle!(
+    idm_mesher3d { plc, "idm_mesher3d_refine or idm_mesher3d_delaunay" },
+    TetMesh,
+    |_h, mesh| mesh.validate().map_err(|e| e.to_string())
+);
 
 /// The C sizing function of `idm_sizing3d_fn`.
 type SizingFn3C =

@@ -5,7 +5,7 @@
 //!
 //! The per-dimension files ([`super::mesh2d`], [`super::mesh3d`]) declare the `extern "C"`
 //! functions (cbindgen reads declarations, not macro expansions) and forward each body here,
-//! through the [`Handle`] trait that says what differs: the input, the options and the mesh.
+//! through the `Handle` trait that says what differs: the input, the options and the mesh.
 
 use std::cell::RefCell;
 use std::ffi::{c_char, c_void, CString};

@@ -1,96 +1,216 @@
 //! Errors reported by the mesher. Every error names the offending input item by its index
 //! (0-based, in the order the items were given).
 
+use std::any::Any;
 use std::fmt;
 
-/// A problem with the input PSLG. Indices are 0-based positions in the input arrays.
+/// Coordinates beyond this magnitude are refused in every dimension
+/// ([`InputError::CoordinateTooLarge`]): the exact insphere test of the 3D mesher (degree 5 in
+/// coordinate differences, plus the splitting products of the exact arithmetic) and the 2D
+/// in-circle test (degree 4) and circumcentres must not overflow.
+pub const MAX_COORD: f64 = 1e50;
+
+/// A problem with the input: a 2D PSLG or a 3D PLC (the C ABI reports each variant as an
+/// `idm_input_error` kind). Indices are 0-based positions in the input arrays.
 #[derive(Debug, Clone, PartialEq)]
 pub enum InputError {
     /// Fewer than three points were given.
-    TooFewPoints { count: usize },
+    TooFewPoints {
+        /// How many points were given.
+        count: usize,
+    },
     /// A point has a NaN or infinite coordinate.
-    NonFinitePoint { point: usize },
+    NonFinitePoint {
+        /// The point.
+        point: usize,
+    },
     /// Two points have identical coordinates.
-    DuplicatePoint { first: usize, second: usize },
+    DuplicatePoint {
+        /// The first of the two items.
+        first: usize,
+        /// The second of the two items.
+        second: usize,
+    },
     /// All points lie on one line, so there is no triangle to make.
     AllCollinear,
     /// A segment refers to a point index that does not exist.
     SegmentIndexOutOfRange {
+        /// The segment.
         segment: usize,
+        /// The point index it refers to.
         index: u64,
+        /// How many points there are.
         num_points: usize,
     },
     /// A segment joins a point to itself (or to a point with the same coordinates).
-    ZeroLengthSegment { segment: usize },
+    ZeroLengthSegment {
+        /// The segment.
+        segment: usize,
+    },
     /// Two segments join the same pair of points.
-    DuplicateSegment { first: usize, second: usize },
+    DuplicateSegment {
+        /// The first of the two items.
+        first: usize,
+        /// The second of the two items.
+        second: usize,
+    },
     /// Two segments cross or overlap somewhere other than at a shared endpoint.
-    CrossingSegments { first: usize, second: usize },
+    CrossingSegments {
+        /// The first of the two items.
+        first: usize,
+        /// The second of the two items.
+        second: usize,
+    },
     /// A hole seed has a NaN or infinite coordinate.
-    NonFiniteHole { hole: usize },
+    NonFiniteHole {
+        /// The hole seed (of the facet, for facet holes).
+        hole: usize,
+    },
     /// A hole seed lies outside the meshed domain (or on a segment).
-    HoleOutsideDomain { hole: usize },
+    HoleOutsideDomain {
+        /// The hole seed (of the facet, for facet holes).
+        hole: usize,
+    },
     /// A region seed has a NaN or infinite coordinate or attribute, or a maximum area that is
     /// not positive.
-    NonFiniteRegion { region: usize },
+    NonFiniteRegion {
+        /// The region seed.
+        region: usize,
+    },
     /// A region seed lies outside the meshed domain (or on a segment).
-    RegionOutsideDomain { region: usize },
+    RegionOutsideDomain {
+        /// The region seed.
+        region: usize,
+    },
     /// The marker array does not have one entry per item.
     MarkerCountMismatch {
+        /// Which items (points, segments, ...).
         what: &'static str,
+        /// How many markers there should be (one per item).
         expected: usize,
+        /// How many markers were given.
         got: usize,
     },
     /// A coordinate is so large that circumcenters would overflow.
-    CoordinateTooLarge { point: usize },
+    CoordinateTooLarge {
+        /// The point.
+        point: usize,
+    },
     /// Fewer than four points were given to a 3D mesher.
-    TooFewPoints3 { count: usize },
+    TooFewPoints3 {
+        /// How many points were given.
+        count: usize,
+    },
     /// All points lie in one plane, so there is no tetrahedron to make.
     AllCoplanar,
     /// A facet has no polygon.
-    FacetWithoutPolygons { facet: usize },
+    FacetWithoutPolygons {
+        /// The facet.
+        facet: usize,
+    },
     /// A facet polygon has no vertex.
-    EmptyPolygon { facet: usize, polygon: usize },
+    EmptyPolygon {
+        /// The facet.
+        facet: usize,
+        /// The polygon, within the facet.
+        polygon: usize,
+    },
     /// A facet polygon refers to a point index that does not exist.
     FacetIndexOutOfRange {
+        /// The facet.
         facet: usize,
+        /// The polygon, within the facet.
         polygon: usize,
+        /// The point index it refers to.
         index: u64,
+        /// How many points there are.
         num_points: usize,
     },
     /// A facet polygon lists the same point twice.
     RepeatedVertexInPolygon {
+        /// The facet.
         facet: usize,
+        /// The polygon, within the facet.
         polygon: usize,
+        /// The point.
         vertex: usize,
     },
     /// A facet loop (three or more vertices) has all its vertices on one line.
-    DegeneratePolygon { facet: usize, polygon: usize },
+    DegeneratePolygon {
+        /// The facet.
+        facet: usize,
+        /// The polygon, within the facet.
+        polygon: usize,
+    },
     /// All vertices of a facet lie on one line, so it spans no plane.
-    DegenerateFacet { facet: usize },
+    DegenerateFacet {
+        /// The facet.
+        facet: usize,
+    },
     /// A facet vertex lies off the plane of the facet's first three non-collinear vertices.
-    NonPlanarFacet { facet: usize, vertex: usize },
+    NonPlanarFacet {
+        /// The facet.
+        facet: usize,
+        /// The point.
+        vertex: usize,
+    },
     /// A facet hole seed has a NaN or infinite coordinate.
-    NonFiniteFacetHole { facet: usize, hole: usize },
+    NonFiniteFacetHole {
+        /// The facet.
+        facet: usize,
+        /// The hole seed (of the facet, for facet holes).
+        hole: usize,
+    },
     /// A facet hole seed does not lie in the facet's plane.
-    FacetHoleOffPlane { facet: usize, hole: usize },
+    FacetHoleOffPlane {
+        /// The facet.
+        facet: usize,
+        /// The hole seed (of the facet, for facet holes).
+        hole: usize,
+    },
     /// Two edges of one facet's polygons cross (the polygons may be the same one).
     SelfIntersectingFacet {
+        /// The facet.
         facet: usize,
+        /// The first polygon, within the facet.
         first_polygon: usize,
+        /// The second polygon (maybe the same as the first).
         second_polygon: usize,
     },
     /// A 3D region seed has a NaN or infinite coordinate or attribute, or a maximum volume that
     /// is not positive.
-    InvalidRegion3 { region: usize },
+    InvalidRegion3 {
+        /// The region seed.
+        region: usize,
+    },
     /// A segment meets a facet other than at a vertex of both (or along an edge of the facet).
-    SegmentCrossesFacet { segment: usize, facet: usize },
+    SegmentCrossesFacet {
+        /// The segment.
+        segment: usize,
+        /// The facet.
+        facet: usize,
+    },
     /// Two facets meet other than along shared edges and vertices.
-    FacetsIntersect { first: usize, second: usize },
+    FacetsIntersect {
+        /// The first of the two items.
+        first: usize,
+        /// The second of the two items.
+        second: usize,
+    },
     /// A point lies on a facet (inside it or on its boundary) but is not one of its vertices.
-    VertexOnFacet { vertex: usize, facet: usize },
+    VertexOnFacet {
+        /// The point.
+        vertex: usize,
+        /// The facet.
+        facet: usize,
+    },
     /// A point lies in the interior of a segment.
-    VertexOnSegment { vertex: usize, segment: usize },
+    VertexOnSegment {
+        /// The point.
+        vertex: usize,
+        /// The segment.
+        segment: usize,
+    },
 }
 
 /// Any failure of a meshing call.
@@ -157,7 +277,7 @@ impl fmt::Display for InputError {
             CoordinateTooLarge { point } => {
                 write!(
                     f,
-                    "point {point} has a coordinate too large to mesh safely (|x| > 1e150)"
+                    "point {point} has a coordinate too large to mesh safely (|x| > {MAX_COORD:e})"
                 )
             }
             TooFewPoints3 { count } => write!(f, "need at least 4 points, got {count}"),
@@ -261,5 +381,57 @@ impl std::error::Error for Error {}
 impl From<InputError> for Error {
     fn from(e: InputError) -> Self {
         Error::Input(e)
+    }
+}
+
+/// The text of a caught panic's payload (the `&str` or `String` that `panic!` carries).
+pub(crate) fn panic_message(payload: &(dyn Any + Send)) -> String {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "unknown panic payload".into())
+}
+
+/// Runs `f`, turning a panic into [`Error::Internal`] (`context` says what was running) so a
+/// bug never takes the host program down. The state `f` worked on is discarded with the
+/// error, so unwind safety of what it borrowed is not a concern.
+pub(crate) fn catch_panic<T>(
+    context: &str,
+    f: impl FnOnce() -> Result<T, Error>,
+) -> Result<T, Error> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).unwrap_or_else(|payload| {
+        Err(Error::Internal(format!(
+            "{context}caught a panic: {}",
+            panic_message(payload.as_ref())
+        )))
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_coordinate_limit_message_states_the_limit() {
+        let msg = InputError::CoordinateTooLarge { point: 4 }.to_string();
+        assert!(msg.ends_with("(|x| > 1e50)"), "{msg}");
+        assert_eq!(format!("{MAX_COORD:e}"), "1e50");
+    }
+
+    #[test]
+    fn a_panic_becomes_an_internal_error_with_its_text() {
+        let r: Result<(), Error> = catch_panic("doing x: ", || panic!("boom {}", 7));
+        assert_eq!(
+            r,
+            Err(Error::Internal("doing x: caught a panic: boom 7".into()))
+        );
+        let r: Result<(), Error> = catch_panic("", || std::panic::panic_any(3u8));
+        assert_eq!(
+            r,
+            Err(Error::Internal(
+                "caught a panic: unknown panic payload".into()
+            ))
+        );
     }
 }

@@ -19,10 +19,15 @@
 //! mesh.validate().unwrap();
 //! ```
 
+#![deny(unsafe_code)]
+#![warn(missing_docs)]
+
 pub mod error;
 pub mod exact;
+// The C ABI is the one place that dereferences caller pointers (each `unsafe` block with its
+// SAFETY note); everything else is safe Rust.
+#[allow(unsafe_code)]
 pub mod ffi;
-pub mod ffi3d;
 pub mod geometry;
 mod hash;
 pub mod input;
@@ -34,7 +39,11 @@ pub mod mesh3d;
 pub mod predicates;
 
 pub use error::{Error, InputError};
+
+/// The "no index" value used in index arrays (for example a missing neighbour), in every
+/// dimension and in the C ABI (`IDM_NONE`).
+pub const NONE: u32 = u32::MAX;
 pub use input::{Pslg, Region};
 pub use input3d::{Facet, Plc, Region3};
-pub use mesh2d::{triangulate, Options, SizingFn, TriMesh, NONE};
+pub use mesh2d::{triangulate, Options, SizingFn, TriMesh};
 pub use mesh3d::{delaunay3d, tetrahedralize, Options3, SizingFn3, TetMesh};

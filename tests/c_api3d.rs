@@ -65,12 +65,12 @@ fn static_lib() -> &'static (PathBuf, PathBuf) {
 }
 
 /// Fails with the fix when the checked-in header predates the 3D API (it is generated from
-/// `src/ffi.rs` and `src/ffi3d.rs` by `tests/header.rs`).
+/// `src/ffi/` by `tests/header.rs`).
 fn assert_header_has_3d() {
     let header = std::fs::read_to_string(root().join("include/idmesh.h")).unwrap_or_default();
     assert!(
         header.contains("idm_mesher3d_new("),
-        "include/idmesh.h lacks the 3D API: tests/header.rs must also parse src/ffi3d.rs; then \
+        "include/idmesh.h lacks the 3D API: tests/header.rs must also parse src/ffi/mesh3d.rs; then \
          run IDMESH_UPDATE_HEADER=1 cargo test --test header"
     );
 }

@@ -1,23 +1,47 @@
-//! Keeps `include/idmesh.h` in sync with `src/ffi.rs` and `src/ffi3d.rs`: regenerates the
-//! header with the cbindgen library and fails when the checked-in file differs.
+//! Keeps `include/idmesh.h` in sync with the C ABI sources (`src/ffi/` and every
+//! `src/ffi_*.rs`): regenerates the header with the cbindgen library and fails when the
+//! checked-in file differs.
 //! `IDMESH_UPDATE_HEADER=1 cargo test --test header` rewrites the file instead.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-/// The header as cbindgen generates it from `src/ffi.rs` and `src/ffi3d.rs` (in that order)
-/// with `cbindgen.toml`.
+/// The files cbindgen reads, in a fixed order: `src/ffi/mod.rs` (cbindgen follows its `mod`
+/// items, so every file of `src/ffi/` comes in declaration order: `common.rs`, with the status
+/// enum, first), then every `src/ffi_*.rs` sorted by name.
+fn sources(root: &Path) -> Vec<PathBuf> {
+    let src = root.join("src");
+    let entries = std::fs::read_dir(&src).unwrap_or_else(|e| panic!("cannot list {src:?}: {e}"));
+    let mut extra: Vec<PathBuf> = entries
+        .map(|e| {
+            e.unwrap_or_else(|e| panic!("cannot list {src:?}: {e}"))
+                .path()
+        })
+        .filter(|p| {
+            let name = p.file_name().and_then(|n| n.to_str()).unwrap_or("");
+            name.starts_with("ffi_") && name.ends_with(".rs")
+        })
+        .collect();
+    extra.sort();
+    let mut files = vec![src.join("ffi/mod.rs")];
+    files.extend(extra);
+    files
+}
+
+/// The header as cbindgen generates it from [`sources`] with `cbindgen.toml`.
 fn generate() -> String {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let config = cbindgen::Config::from_file(root.join("cbindgen.toml"))
         .unwrap_or_else(|e| panic!("cannot read cbindgen.toml: {e}"));
     // Parsing only the FFI modules keeps generation independent of the rest of the crate (and
     // avoids running `cargo metadata` inside the test).
-    let bindings = cbindgen::Builder::new()
-        .with_config(config)
-        .with_src(root.join("src/ffi.rs"))
-        .with_src(root.join("src/ffi3d.rs"))
+    let mut builder = cbindgen::Builder::new().with_config(config);
+    let files = sources(root);
+    for f in &files {
+        builder = builder.with_src(f);
+    }
+    let bindings = builder
         .generate()
-        .unwrap_or_else(|e| panic!("cbindgen failed on src/ffi.rs + src/ffi3d.rs: {e}"));
+        .unwrap_or_else(|e| panic!("cbindgen failed on {files:?}: {e}"));
     let mut out = Vec::new();
     bindings.write(&mut out);
     String::from_utf8(out).expect("cbindgen wrote non-UTF-8 text")
@@ -69,6 +93,14 @@ fn header_declares_the_whole_api() {
         "typedef int32_t (*idm_sizing2d_fn)(",
         "void idm_options2d_default(",
         "const char *idm_last_error(void);",
+        "typedef enum idm_input_error {",
+        "IDM_INPUT_OK = 0",
+        "IDM_INPUT_CROSSING_SEGMENTS = 11",
+        "enum idm_input_error idm_last_error_item(int64_t *item, int64_t *part, int64_t *other);",
+        "size_t struct_size;",
+        "void idm_options2d_default_sized(struct idm_options2d *out,",
+        "void idm_options3d_default_sized(struct idm_options3d *out,",
+        "#define idm_options2d_default(out) idm_options2d_default_sized(",
         "const char *idm_version(void);",
         "enum idm_status idm_mesher2d_new(struct idm_mesher2d **out);",
         "void idm_mesher2d_free(struct idm_mesher2d *m);",

@@ -45,30 +45,14 @@ mod intersect;
 mod tests;
 
 use super::Plc;
-use crate::error::{Error, InputError};
+use crate::error::{Error, InputError, MAX_COORD};
 use crate::mesh3d::NONE;
 use crate::predicates::orient3d;
-
-/// Coordinates beyond this magnitude are refused: the exact insphere test of the 3D mesher
-/// (degree 5 in coordinate differences) could overflow. The same bound as `delaunay3d`.
-pub(crate) const MAX_COORD3: f64 = 1e50;
 
 /// Checks a PLC and reports the first problem found, naming the offending item.
 pub fn check_plc(plc: &Plc) -> Result<(), Error> {
     // A bug must never take the host down: a panic becomes `Error::Internal`.
-    match std::panic::catch_unwind(|| check(plc)) {
-        Ok(r) => r,
-        Err(payload) => {
-            let msg = payload
-                .downcast_ref::<&str>()
-                .map(|s| s.to_string())
-                .or_else(|| payload.downcast_ref::<String>().cloned())
-                .unwrap_or_else(|| "unknown panic".into());
-            Err(Error::Internal(format!(
-                "checking the PLC: caught a panic: {msg}"
-            )))
-        }
-    }
+    crate::error::catch_panic("checking the PLC: ", || check(plc))
 }
 
 fn check(plc: &Plc) -> Result<(), Error> {
@@ -98,7 +82,7 @@ fn check_points(plc: &Plc) -> Result<(), Error> {
         if !p.iter().all(|x| x.is_finite()) {
             return Err(InputError::NonFinitePoint { point: i }.into());
         }
-        if p.iter().any(|x| x.abs() > MAX_COORD3) {
+        if p.iter().any(|x| x.abs() > MAX_COORD) {
             return Err(InputError::CoordinateTooLarge { point: i }.into());
         }
     }

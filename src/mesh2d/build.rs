@@ -12,8 +12,7 @@ use crate::predicates::{orient2d, strictly_between};
 /// The largest accepted minimum-angle bound, in degrees.
 pub const MAX_MIN_ANGLE: f64 = 34.0;
 
-/// Coordinates beyond this magnitude could overflow circumcenter computations.
-const MAX_COORD: f64 = 1e150;
+use crate::error::MAX_COORD;
 
 pub(super) fn run(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
     let policy = if opts.no_boundary_steiner {

@@ -47,8 +47,7 @@ pub use output::TriMesh;
 use crate::error::Error;
 use crate::input::Pslg;
 
-/// The "no index" value used in index arrays (for example a missing neighbour).
-pub const NONE: u32 = u32::MAX;
+pub use crate::NONE;
 
 /// A user sizing test, as Triangle's `triunsuitable`: called with the three corners of a
 /// triangle (counter-clockwise) and its area; returns `true` when the triangle is too large and
@@ -149,16 +148,5 @@ impl fmt::Debug for Options {
 /// mesh is still returned (valid and conforming) with `complete == false`.
 pub fn triangulate(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
     // A bug must never take the host program down: a panic becomes `Error::Internal`.
-    // (The state is discarded, so unwind safety of the borrowed inputs is not a concern.)
-    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| build::run(pslg, opts))) {
-        Ok(r) => r,
-        Err(payload) => {
-            let msg = payload
-                .downcast_ref::<&str>()
-                .map(|s| s.to_string())
-                .or_else(|| payload.downcast_ref::<String>().cloned())
-                .unwrap_or_else(|| "unknown panic".into());
-            Err(Error::Internal(format!("caught a panic: {msg}")))
-        }
-    }
+    crate::error::catch_panic("", || build::run(pslg, opts))
 }

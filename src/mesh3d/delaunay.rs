@@ -8,12 +8,8 @@
 use super::order::brio_hilbert_order;
 use super::store::{Insertion, TetId, Tets, VertexId, FACE, GHOST};
 use super::{TetMesh, NONE};
-use crate::error::{Error, InputError};
+use crate::error::{Error, InputError, MAX_COORD};
 use crate::predicates::{orient2d, orient3d};
-
-/// Coordinates beyond this magnitude could overflow the exact insphere predicate (degree 5 in
-/// coordinate differences, plus the splitting products of the exact arithmetic).
-pub(crate) const MAX_COORD: f64 = 1e50;
 
 /// Seed of the insertion-order shuffle (fixed: the output is reproducible).
 const ORDER_SEED: u64 = 0x1D3E_5A17_0000_0003;

@@ -25,11 +25,10 @@ use std::sync::Arc;
 
 pub use output::TetMesh;
 
-use crate::error::Error;
+use crate::error::{catch_panic, Error};
 use crate::input3d::Plc;
 
-/// The "no index" value used in index arrays (for example a missing neighbour).
-pub const NONE: u32 = u32::MAX;
+pub use crate::NONE;
 
 /// A user sizing test, as TetGen's `tetunsuitable`: called with the four corners of a
 /// tetrahedron and its volume; returns `true` when the tetrahedron is too large and must be
@@ -102,7 +101,7 @@ impl fmt::Debug for Options3 {
 /// Returns an error naming the offending item for invalid input. When the Steiner cap is hit the
 /// mesh is still returned (valid and conforming) with `complete == false`.
 pub fn tetrahedralize(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
-    guard(|| {
+    catch_panic("", || {
         crate::input3d::check_plc(plc)?;
         check_options(opts)?;
         let merged = (opts.merge_coplanar && !opts.keep_surface)
@@ -115,7 +114,7 @@ pub fn tetrahedralize(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
 /// Delaunay tetrahedralization of a point set (TetGen without `-p`): the tetrahedra fill the
 /// convex hull; there are no facets. Duplicate points are reported as errors.
 pub fn delaunay3d(points: &[[f64; 3]]) -> Result<TetMesh, Error> {
-    guard(|| delaunay::delaunay(points))
+    catch_panic("", || delaunay::delaunay(points))
 }
 
 /// Rejects option values that cannot work.
@@ -135,19 +134,4 @@ fn check_options(opts: &Options3) -> Result<(), Error> {
         }
     }
     Ok(())
-}
-
-/// Runs `f`, turning a panic into [`Error::Internal`] so a bug never takes the host down.
-fn guard<T>(f: impl FnOnce() -> Result<T, Error>) -> Result<T, Error> {
-    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)) {
-        Ok(r) => r,
-        Err(payload) => {
-            let msg = payload
-                .downcast_ref::<&str>()
-                .map(|s| s.to_string())
-                .or_else(|| payload.downcast_ref::<String>().cloned())
-                .unwrap_or_else(|| "unknown panic".into());
-            Err(Error::Internal(format!("caught a panic: {msg}")))
-        }
-    }
 }

@@ -462,6 +462,7 @@ pub(super) fn insphere_dd(
 /// Asks the CPU to start loading `r` into the cache (a hint; no effect on the program's
 /// meaning). The kernel's tets are visited in an order no hardware prefetcher can guess.
 #[inline(always)]
+#[allow(unsafe_code)] // the crate denies unsafe code outside the C ABI; this hint is the exception
 fn prefetch<T>(r: &T) {
     #[cfg(target_arch = "x86_64")]
     // SAFETY: a prefetch has no architectural effect (it cannot fault or change memory), and

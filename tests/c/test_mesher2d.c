@@ -346,6 +346,50 @@ typedef struct worker {
   int error_was_clean;
 } worker;
 
+/* Invalid input reaches C with its kind and indices (idm_last_error_item), next to the
+   message, and an options struct that never went through idm_options2d_default is refused. */
+static void test_error_items(void) {
+  static const double square[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+  static const uint32_t diagonals[12] = {0, 1, 1, 2, 2, 3, 3, 0, 0, 2, 1, 3};
+  static const uint32_t dangling[2] = {1, 9};
+  static const double nan_point[2] = {NAN, 0.5};
+  idm_mesher2d *m = NULL;
+  idm_options2d o;
+  int64_t item = 0, part = 0, other = 0;
+  CHECK(idm_mesher2d_new(&m) == IDM_OK, "new");
+  CHECK(idm_mesher2d_add_points(m, square, 4, NULL) == IDM_OK, "points");
+  CHECK(idm_mesher2d_add_segments(m, diagonals, 6, NULL) == IDM_OK, "segments");
+  CHECK(idm_mesher2d_refine(m) == IDM_ERR_INVALID_INPUT, "crossing diagonals accepted");
+  CHECK(idm_last_error_item(&item, &part, &other) == IDM_INPUT_CROSSING_SEGMENTS,
+        "kind of crossing segments");
+  CHECK(item == 4 && part == -1 && other == 5, "crossing items %lld %lld %lld", (long long)item,
+        (long long)part, (long long)other);
+  CHECK(strstr(idm_last_error(), "segments 4 and 5") != NULL, "message kept");
+  idm_mesher2d_free(m);
+
+  CHECK(idm_mesher2d_new(&m) == IDM_OK, "new");
+  CHECK(idm_mesher2d_add_points(m, square, 4, NULL) == IDM_OK, "points");
+  CHECK(idm_mesher2d_add_segments(m, dangling, 1, NULL) == IDM_OK, "segment");
+  CHECK(idm_mesher2d_refine(m) == IDM_ERR_INVALID_INPUT, "dangling index accepted");
+  CHECK(idm_last_error_item(&item, NULL, &other) == IDM_INPUT_SEGMENT_INDEX_OUT_OF_RANGE,
+        "kind of an index out of range");
+  CHECK(item == 0 && other == 9, "index items %lld %lld", (long long)item, (long long)other);
+  CHECK(idm_mesher2d_add_points(m, nan_point, 1, NULL) == IDM_OK, "NaN point stored");
+  CHECK(idm_mesher2d_refine(m) == IDM_ERR_INVALID_INPUT, "NaN accepted");
+  CHECK(idm_last_error_item(&item, NULL, NULL) == IDM_INPUT_NON_FINITE_POINT, "kind of NaN");
+  CHECK(item == 4, "NaN point %lld", (long long)item);
+
+  memset(&o, 0, sizeof o);
+  CHECK(idm_mesher2d_set_options(m, &o) == IDM_ERR_INVALID_ARGUMENT, "struct_size 0 accepted");
+  CHECK(strstr(idm_last_error(), "struct_size") != NULL, "struct_size not named");
+  CHECK(idm_last_error_item(&item, NULL, NULL) == IDM_INPUT_OK && item == -1,
+        "an argument error has no input item");
+  idm_options2d_default(&o);
+  CHECK(o.struct_size == sizeof o, "struct_size %zu", o.struct_size);
+  CHECK(idm_mesher2d_set_options(m, &o) == IDM_OK, "default options refused");
+  idm_mesher2d_free(m);
+}
+
 static void *worker_main(void *arg) {
   worker *w = arg;
   /* The main thread's pending error message is not visible here. */
@@ -397,6 +441,7 @@ int main(void) {
   printf("idmesh %s\n", v);
   test_square_with_hole_and_region();
   test_bad_input();
+  test_error_items();
   test_sizing_callback();
   test_threads();
   printf("%d checks, %d failed\n", checks, failures);

@@ -1,60 +1,20 @@
-//! The C ABI (see `include/idmesh.h`, generated from this file by cbindgen).
+//! The 2D part of the C ABI (`idm_mesher2d_*`, declared in `include/idmesh.h`).
 //!
 //! A thin layer over [`crate::triangulate`]: a handle collects the PSLG and the options, refine
-//! runs the Rust mesher, and getters lend pointers into the resulting [`TriMesh`].
-//!
-//! Conventions shared by every function returning [`idm_status`]:
-//! * the body runs under `catch_unwind`, so a panic becomes [`idm_status::IDM_ERR_INTERNAL`]
-//!   instead of unwinding into C (which would be undefined behaviour);
-//! * every pointer is checked before use (NULL is allowed for an array whose count is 0), and
-//!   every count is checked for overflow before it is turned into a byte length;
-//! * inputs are copied, so the caller may free its arrays as soon as the call returns;
-//! * out-parameters are written only on success, and a failed call leaves the handle unchanged;
-//! * a failure stores a message naming the bad item in a thread-local buffer
-//!   ([`idm_last_error`]); success clears it.
-//!
-//! The C names (`idm_status`, `IDM_OK`, ...) are used on the Rust side too so that cbindgen needs
-//! no renaming rules and a reader can grep one name across both languages.
+//! runs the Rust mesher, and getters lend pointers into the resulting [`TriMesh`]. Only what is
+//! 2D lives here; every body goes through the shared machinery of [`super::common`].
 
-#![allow(non_camel_case_types)]
-#![deny(unsafe_op_in_unsafe_fn)]
-
-use std::cell::RefCell;
-use std::ffi::{c_char, c_void, CString};
+use std::ffi::c_void;
 use std::mem::size_of;
-use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::Arc;
 
-use crate::error::Error;
-use crate::input::Region;
-use crate::mesh2d::{triangulate, Options, SizingFn, TriMesh, NONE};
-
-/// The "no index" value of the index arrays (a missing neighbour): `UINT32_MAX`.
-pub const IDM_NONE: u32 = u32::MAX;
-
-/// The result of every status-returning call. The values are fixed (ABI).
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum idm_status {
-    /// Success.
-    IDM_OK = 0,
-    /// Refinement stopped at the Steiner point cap (`max_steiner`); the mesh is valid,
-    /// conforming and readable, but does not meet every quality or size bound.
-    IDM_INCOMPLETE = 1,
-    /// A required pointer argument was NULL (the message names it).
-    IDM_ERR_NULL_POINTER = 2,
-    /// A bad count or option value (the message says which).
-    IDM_ERR_INVALID_ARGUMENT = 3,
-    /// The PSLG is invalid (the message names the offending point, segment, hole or region).
-    IDM_ERR_INVALID_INPUT = 4,
-    /// A getter was called with no mesh: before a successful refine, or after the input or
-    /// options changed.
-    IDM_ERR_NO_MESH = 5,
-    /// A requested feature is not implemented.
-    IDM_ERR_UNSUPPORTED = 6,
-    /// A caught panic or a failed internal invariant: a bug in idmesh, please report it.
-    IDM_ERR_INTERNAL = 7,
-}
+use super::common::{
+    add_marked, change, counts, free_handle, idm_status, impl_handle, init_options, input_slice,
+    lend, lend_plain, new_handle, optional_slice, positive, read_options, reject_nan, reserve, run,
+    scaled, steiner_cap_to_c, validate, CSizing, Failure, Handle, SizedOptions,
+};
+use crate::input::{Pslg, Region};
+use crate::mesh2d::{triangulate, Options, SizingFn, TriMesh};
 
 /// Meshing options. Fill it with `idm_options2d_default` first, then change what you need, so
 /// that code keeps working if fields are ever appended. Booleans are `int32_t`: 0 is false,
@@ -62,6 +22,10 @@ pub enum idm_status {
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct idm_options2d {
+    /// The size of this struct as the caller was compiled: `sizeof(idm_options2d)`, set by
+    /// `idm_options2d_default`. It lets a library and a caller built against different versions of
+    /// the header exchange the struct safely (see `idm_options2d_default_sized`).
+    pub struct_size: usize,
     /// Minimum angle in degrees (Triangle's `-q`); `<= 0` means no angle refinement. Must not
     /// be NaN. Default 0.
     pub min_angle: f64,
@@ -112,7 +76,7 @@ pub type idm_sizing2d_fn = Option<
 pub struct idm_mesher2d {
     /// The input collected so far (markers always have one entry per item: the defaults 0
     /// for points and 1 for segments fill in for calls made without markers).
-    pslg: crate::input::Pslg,
+    pslg: Pslg,
     /// The options, including the sizing callback.
     opts: Options,
     /// The output of the last successful (or `IDM_INCOMPLETE`) refine; dropped by any change
@@ -120,275 +84,23 @@ pub struct idm_mesher2d {
     mesh: Option<TriMesh>,
 }
 
-/// A failed (or incomplete) call: the status to return and the message for `idm_last_error`.
-pub(crate) struct Failure {
-    status: idm_status,
-    message: String,
-}
-
-impl Failure {
-    pub(crate) fn new(status: idm_status, message: impl Into<String>) -> Self {
-        Failure {
-            status,
-            message: message.into(),
+impl_handle!(
+    idm_mesher2d { pslg, "idm_mesher2d_refine" },
+    TriMesh,
+    |h, mesh| {
+        // With -Y boundary segments are kept whole: the mesh is constrained Delaunay.
+        if h.opts.no_boundary_steiner {
+            mesh.validate_constrained()
+        } else {
+            mesh.validate()
         }
     }
+);
 
-    pub(crate) fn null(what: &str) -> Self {
-        Failure::new(
-            idm_status::IDM_ERR_NULL_POINTER,
-            format!("argument `{what}` is NULL"),
-        )
-    }
+/// The C sizing function of `idm_sizing2d_fn`.
+type SizingFn2C = unsafe extern "C" fn(*mut c_void, *const f64, *const f64, *const f64, f64) -> i32;
 
-    pub(crate) fn invalid(message: impl Into<String>) -> Self {
-        Failure::new(idm_status::IDM_ERR_INVALID_ARGUMENT, message)
-    }
-
-    fn no_mesh() -> Self {
-        Failure::new(
-            idm_status::IDM_ERR_NO_MESH,
-            "no mesh: call idm_mesher2d_refine first (the mesh is dropped when refine fails or \
-             the input or options change)",
-        )
-    }
-}
-
-impl From<Error> for Failure {
-    fn from(e: Error) -> Self {
-        let status = match &e {
-            Error::Input(_) => idm_status::IDM_ERR_INVALID_INPUT,
-            Error::InvalidOption(_) => idm_status::IDM_ERR_INVALID_ARGUMENT,
-            Error::Unsupported(_) => idm_status::IDM_ERR_UNSUPPORTED,
-            Error::Internal(_) => idm_status::IDM_ERR_INTERNAL,
-        };
-        Failure::new(status, e.to_string())
-    }
-}
-
-type CallResult = Result<(), Failure>;
-
-thread_local! {
-    /// The message of the last failure on this thread; empty after a success.
-    static LAST_ERROR: RefCell<CString> = RefCell::new(CString::default());
-}
-
-/// Stores `message` as this thread's last error. Interior NULs (impossible in our own
-/// messages, but a panic payload could carry one) are escaped so the text is never cut short.
-fn set_last_error(message: &str) {
-    let text = CString::new(message.replace('\0', "\\0")).unwrap_or_default();
-    // `try_with` fails only during thread teardown, when nobody can read the message anyway.
-    let _ = LAST_ERROR.try_with(|e| *e.borrow_mut() = text);
-}
-
-/// Clears this thread's last error, without reallocating when it is already empty so that a
-/// pointer from `idm_last_error` stays valid across a run of successful calls.
-fn clear_last_error() {
-    let _ = LAST_ERROR.try_with(|e| {
-        let mut e = e.borrow_mut();
-        if !e.as_bytes().is_empty() {
-            *e = CString::default();
-        }
-    });
-}
-
-/// Runs the body of a status-returning entry point: catches panics, maps the result to a
-/// status and records or clears the thread's last error.
-pub(crate) fn guard(body: impl FnOnce() -> CallResult) -> idm_status {
-    let outcome = catch_unwind(AssertUnwindSafe(body)).unwrap_or_else(|payload| {
-        let what = payload
-            .downcast_ref::<&str>()
-            .map(|s| s.to_string())
-            .or_else(|| payload.downcast_ref::<String>().cloned())
-            .unwrap_or_else(|| "unknown panic payload".to_string());
-        Err(Failure::from(Error::Internal(format!("panic: {what}"))))
-    });
-    match outcome {
-        Ok(()) => {
-            clear_last_error();
-            idm_status::IDM_OK
-        }
-        Err(f) => {
-            set_last_error(&f.message);
-            f.status
-        }
-    }
-}
-
-/// `count * k`, or an error naming `what` when it overflows.
-pub(crate) fn scaled(count: usize, k: usize, what: &str) -> Result<usize, Failure> {
-    count
-        .checked_mul(k)
-        .ok_or_else(|| Failure::invalid(format!("`{what}` = {count} is too large")))
-}
-
-/// Borrows `len` elements at `ptr` as a slice after checking what can be checked: NULL (allowed
-/// only when `len` is 0), alignment, and that the byte length fits `isize`.
-///
-/// # Safety
-/// When the checks pass, `ptr` must point to `len` readable elements that stay unchanged during
-/// the call (the caller's contract, documented in the header).
-pub(crate) unsafe fn input_slice<'a, T>(
-    ptr: *const T,
-    len: usize,
-    what: &str,
-) -> Result<&'a [T], Failure> {
-    if len == 0 {
-        return Ok(&[]);
-    }
-    if ptr.is_null() {
-        return Err(Failure::new(
-            idm_status::IDM_ERR_NULL_POINTER,
-            format!("argument `{what}` is NULL but {len} values were requested from it"),
-        ));
-    }
-    if !ptr.is_aligned() {
-        return Err(Failure::invalid(format!(
-            "argument `{what}` is not suitably aligned"
-        )));
-    }
-    match len.checked_mul(size_of::<T>()) {
-        Some(bytes) if bytes <= isize::MAX as usize => {}
-        _ => {
-            return Err(Failure::invalid(format!(
-                "argument `{what}`: {len} values is too large"
-            )))
-        }
-    }
-    // SAFETY: non-null, aligned, size in range; readability is the caller's contract.
-    Ok(unsafe { std::slice::from_raw_parts(ptr, len) })
-}
-
-/// Like [`input_slice`] for a nullable array: NULL gives `None`.
-///
-/// # Safety
-/// As [`input_slice`].
-pub(crate) unsafe fn optional_slice<'a, T>(
-    ptr: *const T,
-    len: usize,
-    what: &str,
-) -> Result<Option<&'a [T]>, Failure> {
-    if ptr.is_null() {
-        Ok(None)
-    } else {
-        // SAFETY: forwarded contract.
-        unsafe { input_slice(ptr, len, what) }.map(Some)
-    }
-}
-
-/// Checks an out-parameter pointer: non-NULL and aligned.
-pub(crate) fn check_out<T>(ptr: *mut T, what: &str) -> CallResult {
-    if ptr.is_null() {
-        Err(Failure::null(what))
-    } else if !ptr.is_aligned() {
-        Err(Failure::invalid(format!(
-            "argument `{what}` is not suitably aligned"
-        )))
-    } else {
-        Ok(())
-    }
-}
-
-/// Writes through an optional out-parameter already checked by [`check_out`] (NULL: skipped).
-///
-/// # Safety
-/// `ptr` must be NULL or valid for a write of `T`.
-pub(crate) unsafe fn write_out<T>(ptr: *mut T, value: T) {
-    if !ptr.is_null() {
-        // SAFETY: the caller's contract.
-        unsafe { ptr.write(value) };
-    }
-}
-
-/// Borrows the handle mutably.
-///
-/// # Safety
-/// `m` must be NULL or a live handle from `idm_mesher2d_new` not used elsewhere meanwhile.
-unsafe fn handle_mut<'a>(m: *mut idm_mesher2d) -> Result<&'a mut idm_mesher2d, Failure> {
-    // SAFETY: the caller's contract.
-    unsafe { m.as_mut() }.ok_or_else(|| Failure::null("m"))
-}
-
-/// Borrows the handle's mesh, or reports that there is none.
-///
-/// # Safety
-/// As [`handle_mut`].
-unsafe fn mesh_of<'a>(m: *const idm_mesher2d) -> Result<&'a TriMesh, Failure> {
-    // SAFETY: the caller's contract.
-    let m = unsafe { m.as_ref() }.ok_or_else(|| Failure::null("m"))?;
-    m.mesh.as_ref().ok_or_else(Failure::no_mesh)
-}
-
-/// Pointer to the first element of an output array, or NULL when it is empty (an empty `Vec`'s
-/// dangling pointer must not reach C code).
-pub(crate) fn array_ptr<T, U>(v: &[T]) -> *const U {
-    if v.is_empty() {
-        std::ptr::null()
-    } else {
-        v.as_ptr().cast()
-    }
-}
-
-/// The body of every array getter: checks the handle and both out-pointers, then lends the
-/// array chosen by `field` (NULL when empty) and its element count.
-///
-/// # Safety
-/// As for the getters: `m` a live handle, `out` and `count` NULL or valid for a write.
-unsafe fn lend<T, U>(
-    m: *const idm_mesher2d,
-    out: *mut *const U,
-    count: *mut usize,
-    what: &str,
-    field: impl FnOnce(&TriMesh) -> &Vec<T>,
-) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let mesh = unsafe { mesh_of(m) }?;
-        check_out(out, what)?;
-        check_out(count, "count")?;
-        let v = field(mesh);
-        unsafe {
-            out.write(array_ptr(v));
-            count.write(v.len());
-        }
-        Ok(())
-    })
-}
-
-/// Grows `v` by `extra` elements, reporting allocation failure instead of aborting.
-pub(crate) fn reserve<T>(v: &mut Vec<T>, extra: usize, what: &str) -> CallResult {
-    v.try_reserve(extra)
-        .map_err(|_| Failure::invalid(format!("out of memory adding {extra} {what}")))
-}
-
-/// Rejects a count that would push the number of items past what `uint32_t` indices address.
-pub(crate) fn check_index_room(have: usize, extra: usize, what: &str) -> CallResult {
-    match have.checked_add(extra) {
-        Some(total) if total < NONE as usize => Ok(()),
-        _ => Err(Failure::invalid(format!(
-            "adding {extra} {what} to {have} exceeds the uint32_t index range"
-        ))),
-    }
-}
-
-/// A C sizing callback with its user pointer, callable as a Rust [`SizingFn`].
-#[derive(Clone, Copy)]
-struct CSizing {
-    f: unsafe extern "C" fn(*mut c_void, *const f64, *const f64, *const f64, f64) -> i32,
-    user: *mut c_void,
-}
-
-// SAFETY: the raw `user` pointer is what makes this type neither Send nor Sync. The mesher calls
-// the sizing function only inside `idm_mesher2d_refine`, from the thread that called it, and
-// keeps no copy after the handle is freed. Whether `user` (and the callback) may be used from
-// the thread that calls refine is the caller's contract, stated in the header at
-// `idm_sizing2d_fn` and `idm_mesher2d_set_sizing`; Rust cannot check it.
-unsafe impl Send for CSizing {}
-// SAFETY: as for Send: concurrent use would require the caller to refine one handle from two
-// threads at once, which the header forbids.
-unsafe impl Sync for CSizing {}
-
-impl CSizing {
+impl CSizing<SizingFn2C> {
     /// Calls the C function. A method (rather than field accesses in the closure) so that the
     /// closure captures the whole `Send + Sync` struct, not its bare raw pointer.
     fn call(&self, a: [f64; 2], b: [f64; 2], c: [f64; 2], area: f64) -> bool {
@@ -398,49 +110,53 @@ impl CSizing {
     }
 }
 
-/// Fills `out` with the default options (the same defaults as the Rust `Options::default()`).
-/// NULL is a no-op.
+/// Fills `out` with the default options (the same defaults as the Rust `Options::default()`),
+/// `struct_size` included. NULL is a no-op. Through the header this is a macro that calls
+/// `idm_options2d_default_sized` with the caller's `sizeof(idm_options2d)`, so that a
+/// program built against an older, smaller struct keeps working with a newer library.
 ///
 /// # Safety
 /// `out` must be NULL or valid for writing an `idm_options2d`.
 #[no_mangle]
 pub unsafe extern "C" fn idm_options2d_default(out: *mut idm_options2d) {
-    if out.is_null() || !out.is_aligned() {
-        return;
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { init_options(out, size_of::<idm_options2d>()) }
+}
+
+/// `idm_options2d_default` for a caller's struct of `struct_size` bytes (the header's
+/// `idm_options2d_default` macro passes `sizeof(idm_options2d)`): the fields this library knows
+/// get their defaults and `struct_size` gets `struct_size`; bytes beyond them (fields of a
+/// newer header) are zeroed. NULL, or a `struct_size` smaller than any version's struct, is
+/// a no-op.
+///
+/// # Safety
+/// `out` must be NULL or valid for writing `struct_size` bytes.
+#[no_mangle]
+pub unsafe extern "C" fn idm_options2d_default_sized(out: *mut idm_options2d, struct_size: usize) {
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { init_options(out, struct_size) }
+}
+
+// SAFETY: `#[repr(C)]`, `struct_size: usize` first, only integer and float fields.
+unsafe impl SizedOptions for idm_options2d {
+    const BASELINE: usize = size_of::<idm_options2d>();
+    const NAME: &'static str = "idm_options2d";
+
+    fn defaults() -> Self {
+        let d = Options::default();
+        idm_options2d {
+            struct_size: size_of::<idm_options2d>(),
+            min_angle: d.min_angle.unwrap_or(0.0),
+            max_area: d.max_area.unwrap_or(0.0),
+            region_max_area: d.region_max_area.into(),
+            region_attributes: d.region_attributes.into(),
+            convex_hull: d.convex_hull.into(),
+            off_centers: d.off_centers.into(),
+            split_crossings: d.split_crossings.into(),
+            no_boundary_steiner: d.no_boundary_steiner.into(),
+            max_steiner: steiner_cap_to_c(d.max_steiner),
+        }
     }
-    let d = Options::default();
-    let value = idm_options2d {
-        min_angle: d.min_angle.unwrap_or(0.0),
-        max_area: d.max_area.unwrap_or(0.0),
-        region_max_area: d.region_max_area.into(),
-        region_attributes: d.region_attributes.into(),
-        convex_hull: d.convex_hull.into(),
-        off_centers: d.off_centers.into(),
-        split_crossings: d.split_crossings.into(),
-        no_boundary_steiner: d.no_boundary_steiner.into(),
-        max_steiner: d
-            .max_steiner
-            .map_or(-1, |n| i64::try_from(n).unwrap_or(i64::MAX)),
-    };
-    // SAFETY: checked non-null and aligned; validity is the caller's contract.
-    unsafe { out.write(value) };
-}
-
-/// The message of the last failed `idm_` call on this thread, or "" when the last
-/// status-returning call succeeded. Never NULL. The string is owned by the library and stays
-/// valid until the next `idm_` call on this thread.
-#[no_mangle]
-pub extern "C" fn idm_last_error() -> *const c_char {
-    static EMPTY: &[u8] = b"\0";
-    LAST_ERROR
-        .try_with(|e| e.borrow().as_ptr())
-        .unwrap_or(EMPTY.as_ptr().cast())
-}
-
-/// The library version ("major.minor.patch"), a static string.
-#[no_mangle]
-pub extern "C" fn idm_version() -> *const c_char {
-    concat!(env!("CARGO_PKG_VERSION"), "\0").as_ptr().cast()
 }
 
 /// Creates an empty mesher with default options and stores it in `*out`.
@@ -449,17 +165,8 @@ pub extern "C" fn idm_version() -> *const c_char {
 /// `out` must be NULL (an error) or valid for writing a pointer.
 #[no_mangle]
 pub unsafe extern "C" fn idm_mesher2d_new(out: *mut *mut idm_mesher2d) -> idm_status {
-    guard(|| {
-        check_out(out, "out")?;
-        let m = Box::new(idm_mesher2d {
-            pslg: Default::default(),
-            opts: Options::default(),
-            mesh: None,
-        });
-        // SAFETY: checked above.
-        unsafe { out.write(Box::into_raw(m)) };
-        Ok(())
-    })
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { new_handle(out) }
 }
 
 /// Destroys a mesher and everything it lent out. NULL is a no-op.
@@ -468,15 +175,8 @@ pub unsafe extern "C" fn idm_mesher2d_new(out: *mut *mut idm_mesher2d) -> idm_st
 /// `m` must be NULL or a handle from `idm_mesher2d_new` not freed before and not in use.
 #[no_mangle]
 pub unsafe extern "C" fn idm_mesher2d_free(m: *mut idm_mesher2d) {
-    if m.is_null() {
-        return;
-    }
-    // Dropping plain vectors cannot panic; the guard keeps that true even if a field grows a
-    // Drop impl one day. The status is dropped because this function returns nothing.
-    let _ = catch_unwind(AssertUnwindSafe(|| {
-        // SAFETY: the caller's contract.
-        drop(unsafe { Box::from_raw(m) });
-    }));
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { free_handle(m) }
 }
 
 /// Appends `count` points: `xy` holds 2*count doubles (x0, y0, x1, y1, ...). `markers` is NULL
@@ -492,24 +192,12 @@ pub unsafe extern "C" fn idm_mesher2d_add_points(
     count: usize,
     markers: *const i32,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let m = unsafe { handle_mut(m) }?;
-        let xy = unsafe { input_slice(xy, scaled(count, 2, "count")?, "xy") }?;
-        let markers = unsafe { optional_slice(markers, count, "markers") }?;
-        check_index_room(m.pslg.points.len(), count, "points")?;
-        reserve(&mut m.pslg.points, count, "points")?;
-        reserve(&mut m.pslg.point_markers, count, "point markers")?;
-        m.pslg
-            .points
-            .extend(xy.chunks_exact(2).map(|p| [p[0], p[1]]));
-        match markers {
-            Some(mk) => m.pslg.point_markers.extend_from_slice(mk),
-            None => m.pslg.point_markers.resize(m.pslg.points.len(), 0),
-        }
-        m.mesh = None;
-        Ok(())
-    })
+    // SAFETY: the caller's contract, forwarded.
+    unsafe {
+        add_marked(m, xy, count, markers, 0, ["xy", "points"], |m| {
+            (&mut m.pslg.points, &mut m.pslg.point_markers)
+        })
+    }
 }
 
 /// Appends `count` segments: `ab` holds 2*count 0-based point indices. Indices may refer to
@@ -526,24 +214,12 @@ pub unsafe extern "C" fn idm_mesher2d_add_segments(
     count: usize,
     markers: *const i32,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let m = unsafe { handle_mut(m) }?;
-        let ab = unsafe { input_slice(ab, scaled(count, 2, "count")?, "ab") }?;
-        let markers = unsafe { optional_slice(markers, count, "markers") }?;
-        check_index_room(m.pslg.segments.len(), count, "segments")?;
-        reserve(&mut m.pslg.segments, count, "segments")?;
-        reserve(&mut m.pslg.segment_markers, count, "segment markers")?;
-        m.pslg
-            .segments
-            .extend(ab.chunks_exact(2).map(|s| [s[0], s[1]]));
-        match markers {
-            Some(mk) => m.pslg.segment_markers.extend_from_slice(mk),
-            None => m.pslg.segment_markers.resize(m.pslg.segments.len(), 1),
-        }
-        m.mesh = None;
-        Ok(())
-    })
+    // SAFETY: the caller's contract, forwarded.
+    unsafe {
+        add_marked(m, ab, count, markers, 1, ["ab", "segments"], |m| {
+            (&mut m.pslg.segments, &mut m.pslg.segment_markers)
+        })
+    }
 }
 
 /// Appends `count` hole seeds: `xy` holds 2*count doubles. The triangles reachable from a seed
@@ -557,17 +233,17 @@ pub unsafe extern "C" fn idm_mesher2d_add_holes(
     xy: *const f64,
     count: usize,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let m = unsafe { handle_mut(m) }?;
-        let xy = unsafe { input_slice(xy, scaled(count, 2, "count")?, "xy") }?;
-        reserve(&mut m.pslg.holes, count, "holes")?;
-        m.pslg
-            .holes
-            .extend(xy.chunks_exact(2).map(|p| [p[0], p[1]]));
-        m.mesh = None;
-        Ok(())
-    })
+    // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+    unsafe {
+        change(m, |m| {
+            let xy = input_slice(xy, scaled(count, 2, "count")?, "xy")?;
+            reserve(&mut m.pslg.holes, count, "holes")?;
+            m.pslg
+                .holes
+                .extend(xy.chunks_exact(2).map(|p| [p[0], p[1]]));
+            Ok(())
+        })
+    }
 }
 
 /// Appends `count` region seeds: `xy` holds 2*count doubles, `attributes` `count` regional
@@ -585,30 +261,29 @@ pub unsafe extern "C" fn idm_mesher2d_add_regions(
     max_areas: *const f64,
     count: usize,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let m = unsafe { handle_mut(m) }?;
-        let xy = unsafe { input_slice(xy, scaled(count, 2, "count")?, "xy") }?;
-        let attributes = unsafe { input_slice(attributes, count, "attributes") }?;
-        let max_areas = unsafe { optional_slice(max_areas, count, "max_areas") }?;
-        if let Some(i) = max_areas.and_then(|a| a.iter().position(|x| x.is_nan())) {
-            return Err(Failure::invalid(format!(
-                "max_areas[{i}] (region {}) is NaN",
-                m.pslg.regions.len() + i
-            )));
-        }
-        reserve(&mut m.pslg.regions, count, "regions")?;
-        for i in 0..count {
-            let bound = max_areas.map_or(0.0, |a| a[i]);
-            m.pslg.regions.push(Region {
-                point: [xy[2 * i], xy[2 * i + 1]],
-                attribute: attributes[i],
-                max_area: (bound > 0.0).then_some(bound),
-            });
-        }
-        m.mesh = None;
-        Ok(())
-    })
+    // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+    unsafe {
+        change(m, |m| {
+            let xy = input_slice(xy, scaled(count, 2, "count")?, "xy")?;
+            let attributes = input_slice(attributes, count, "attributes")?;
+            let max_areas = optional_slice(max_areas, count, "max_areas")?;
+            if let Some(i) = max_areas.and_then(|a| a.iter().position(|x| x.is_nan())) {
+                return Err(Failure::invalid(format!(
+                    "max_areas[{i}] (region {}) is NaN",
+                    m.pslg.regions.len() + i
+                )));
+            }
+            reserve(&mut m.pslg.regions, count, "regions")?;
+            for i in 0..count {
+                m.pslg.regions.push(Region {
+                    point: [xy[2 * i], xy[2 * i + 1]],
+                    attribute: attributes[i],
+                    max_area: positive(max_areas.map_or(0.0, |a| a[i])),
+                });
+            }
+            Ok(())
+        })
+    }
 }
 
 /// Replaces the options (the sizing callback is kept; see `idm_mesher2d_set_sizing`). Value
@@ -621,33 +296,27 @@ pub unsafe extern "C" fn idm_mesher2d_set_options(
     m: *mut idm_mesher2d,
     opts: *const idm_options2d,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let m = unsafe { handle_mut(m) }?;
-        let o = unsafe { input_slice(opts, 1, "opts") }?[0];
-        if o.min_angle.is_nan() {
-            return Err(Failure::invalid("option min_angle is NaN"));
-        }
-        if o.max_area.is_nan() {
-            return Err(Failure::invalid("option max_area is NaN"));
-        }
-        let positive = |x: f64| (x > 0.0).then_some(x);
-        m.opts = Options {
-            min_angle: positive(o.min_angle),
-            max_area: positive(o.max_area),
-            region_max_area: o.region_max_area != 0,
-            region_attributes: o.region_attributes != 0,
-            convex_hull: o.convex_hull != 0,
-            max_steiner: u64::try_from(o.max_steiner).ok(),
-            no_boundary_steiner: o.no_boundary_steiner != 0,
-            off_centers: o.off_centers != 0,
-            split_crossings: o.split_crossings != 0,
-            sizing: m.opts.sizing.take(),
-            verbose: m.opts.verbose,
-        };
-        m.mesh = None;
-        Ok(())
-    })
+    // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+    unsafe {
+        change(m, |m| {
+            let o = read_options(opts)?;
+            reject_nan(&[("min_angle", o.min_angle), ("max_area", o.max_area)])?;
+            m.opts = Options {
+                min_angle: positive(o.min_angle),
+                max_area: positive(o.max_area),
+                region_max_area: o.region_max_area != 0,
+                region_attributes: o.region_attributes != 0,
+                convex_hull: o.convex_hull != 0,
+                max_steiner: u64::try_from(o.max_steiner).ok(),
+                no_boundary_steiner: o.no_boundary_steiner != 0,
+                off_centers: o.off_centers != 0,
+                split_crossings: o.split_crossings != 0,
+                sizing: m.opts.sizing.take(),
+                verbose: m.opts.verbose,
+            };
+            Ok(())
+        })
+    }
 }
 
 /// Sets the user sizing test (see `idm_sizing2d_fn`); `fn` NULL clears it (`user` is then
@@ -664,16 +333,17 @@ pub unsafe extern "C" fn idm_mesher2d_set_sizing(
     r#fn: idm_sizing2d_fn,
     user: *mut c_void,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let m = unsafe { handle_mut(m) }?;
-        m.opts.sizing = r#fn.map(|f| {
-            let c = CSizing { f, user };
-            Arc::new(move |a, b, c3, area| c.call(a, b, c3, area)) as SizingFn
-        });
-        m.mesh = None;
-        Ok(())
-    })
+    let sizing = r#fn.map(|f| {
+        let c = CSizing { f, user };
+        Arc::new(move |a, b, c3, area| c.call(a, b, c3, area)) as SizingFn
+    });
+    // SAFETY: the caller's contract, forwarded.
+    unsafe {
+        change(m, |m| {
+            m.opts.sizing = sizing;
+            Ok(())
+        })
+    }
 }
 
 /// Meshes the input with the current options, replacing any previous mesh. Returns `IDM_OK`,
@@ -684,26 +354,8 @@ pub unsafe extern "C" fn idm_mesher2d_set_sizing(
 /// `m` must be a live handle.
 #[no_mangle]
 pub unsafe extern "C" fn idm_mesher2d_refine(m: *mut idm_mesher2d) -> idm_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let m = unsafe { handle_mut(m) }?;
-        // Dropped first so that a failure (or a panic caught by the guard) leaves no stale mesh.
-        m.mesh = None;
-        let mesh = triangulate(&m.pslg, &m.opts)?;
-        let (complete, steiner) = (mesh.complete, mesh.steiner_points);
-        m.mesh = Some(mesh);
-        if complete {
-            Ok(())
-        } else {
-            Err(Failure::new(
-                idm_status::IDM_INCOMPLETE,
-                format!(
-                    "refinement stopped at the Steiner point cap after {steiner} Steiner \
-                     points: the mesh is valid but does not meet every bound"
-                ),
-            ))
-        }
-    })
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { run(m, true, |h| triangulate(&h.pslg, &h.opts)) }
 }
 
 /// The output sizes: vertices, triangles and subsegments. Each out-pointer may be NULL when
@@ -718,25 +370,21 @@ pub unsafe extern "C" fn idm_mesher2d_counts(
     num_triangles: *mut usize,
     num_segments: *mut usize,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let mesh = unsafe { mesh_of(m) }?;
-        for (p, what) in [
-            (num_vertices, "num_vertices"),
-            (num_triangles, "num_triangles"),
-            (num_segments, "num_segments"),
-        ] {
-            if !p.is_null() {
-                check_out(p, what)?;
-            }
-        }
-        unsafe {
-            write_out(num_vertices, mesh.vertices.len());
-            write_out(num_triangles, mesh.triangles.len());
-            write_out(num_segments, mesh.segments.len());
-        }
-        Ok(())
-    })
+    let outs = [
+        (num_vertices, "num_vertices"),
+        (num_triangles, "num_triangles"),
+        (num_segments, "num_segments"),
+    ];
+    // SAFETY: the caller's contract, forwarded.
+    unsafe {
+        counts(m, outs, |mesh| {
+            [
+                mesh.vertices.len(),
+                mesh.triangles.len(),
+                mesh.segments.len(),
+            ]
+        })
+    }
 }
 
 /// Lends the vertex coordinates: `*xy` gets 2*count doubles, `*count` the number of vertices.
@@ -751,7 +399,7 @@ pub unsafe extern "C" fn idm_mesher2d_vertices(
     count: *mut usize,
 ) -> idm_status {
     // SAFETY: the caller's contract, forwarded.
-    unsafe { lend(m, xy, count, "xy", |mesh| &mesh.vertices) }
+    unsafe { lend_plain(m, xy, count, "xy", |mesh| &mesh.vertices) }
 }
 
 /// Lends one marker per vertex (`*count` = number of vertices).
@@ -765,7 +413,7 @@ pub unsafe extern "C" fn idm_mesher2d_vertex_markers(
     count: *mut usize,
 ) -> idm_status {
     // SAFETY: the caller's contract, forwarded.
-    unsafe { lend(m, markers, count, "markers", |mesh| &mesh.vertex_markers) }
+    unsafe { lend_plain(m, markers, count, "markers", |mesh| &mesh.vertex_markers) }
 }
 
 /// Lends the triangles: `*abc` gets 3*count vertex indices, each triangle counter-clockwise.
@@ -779,7 +427,7 @@ pub unsafe extern "C" fn idm_mesher2d_triangles(
     count: *mut usize,
 ) -> idm_status {
     // SAFETY: the caller's contract, forwarded.
-    unsafe { lend(m, abc, count, "abc", |mesh| &mesh.triangles) }
+    unsafe { lend_plain(m, abc, count, "abc", |mesh| &mesh.triangles) }
 }
 
 /// Lends the neighbours: `*nbr` gets 3*count triangle indices; entry 3t+i is the triangle
@@ -794,7 +442,7 @@ pub unsafe extern "C" fn idm_mesher2d_neighbors(
     count: *mut usize,
 ) -> idm_status {
     // SAFETY: the caller's contract, forwarded.
-    unsafe { lend(m, nbr, count, "nbr", |mesh| &mesh.neighbors) }
+    unsafe { lend_plain(m, nbr, count, "nbr", |mesh| &mesh.neighbors) }
 }
 
 /// Lends one regional attribute per triangle (0 for triangles in no region). `*count` is 0
@@ -809,7 +457,7 @@ pub unsafe extern "C" fn idm_mesher2d_triangle_attributes(
     count: *mut usize,
 ) -> idm_status {
     // SAFETY: the caller's contract, forwarded.
-    unsafe { lend(m, attr, count, "attr", |mesh| &mesh.triangle_attributes) }
+    unsafe { lend_plain(m, attr, count, "attr", |mesh| &mesh.triangle_attributes) }
 }
 
 /// Lends the subsegments: `*ab` gets 2*count vertex indices and `*markers` (which may be NULL
@@ -824,21 +472,12 @@ pub unsafe extern "C" fn idm_mesher2d_segments(
     markers: *mut *const i32,
     count: *mut usize,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let mesh = unsafe { mesh_of(m) }?;
-        check_out(ab, "ab")?;
-        if !markers.is_null() {
-            check_out(markers, "markers")?;
-        }
-        check_out(count, "count")?;
-        unsafe {
-            ab.write(array_ptr(&mesh.segments));
-            write_out(markers, array_ptr(&mesh.segment_markers));
-            count.write(mesh.segments.len());
-        }
-        Ok(())
-    })
+    // SAFETY: the caller's contract, forwarded.
+    unsafe {
+        lend(m, ab, markers, count, "ab", |mesh| {
+            (&mesh.segments, &mesh.segment_markers)
+        })
+    }
 }
 
 /// Checks the output mesh invariants exactly (index ranges, counter-clockwise orientation,
@@ -849,61 +488,23 @@ pub unsafe extern "C" fn idm_mesher2d_segments(
 /// `m` must be a live handle.
 #[no_mangle]
 pub unsafe extern "C" fn idm_mesher2d_validate(m: *const idm_mesher2d) -> idm_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let mesh = unsafe { mesh_of(m) }?;
-        // SAFETY: `mesh_of` has just checked the pointer.
-        let constrained = unsafe { &*m }.opts.no_boundary_steiner;
-        // With -Y boundary segments are kept whole: the mesh is constrained Delaunay.
-        let checked = if constrained {
-            mesh.validate_constrained()
-        } else {
-            mesh.validate()
-        };
-        checked.map_err(|msg| {
-            Failure::new(
-                idm_status::IDM_ERR_INTERNAL,
-                format!("mesh validation failed: {msg}"),
-            )
-        })
-    })
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { validate(m) }
 }
 
 #[cfg(test)]
 mod tests {
+    use super::super::common::testing::{last_error, TestHandle};
+    use super::super::common::{guard, idm_version, mesh_of, IDM_NONE};
     use super::*;
-    use crate::input::Pslg;
+    use crate::NONE;
     use std::ffi::CStr;
     use std::sync::atomic::{AtomicUsize, Ordering};
 
     use idm_status::*;
 
-    /// The current thread's last error as a Rust string.
-    fn last_error() -> String {
-        // SAFETY: idm_last_error never returns NULL and the string lives until the next call.
-        unsafe { CStr::from_ptr(idm_last_error()) }
-            .to_str()
-            .unwrap()
-            .to_string()
-    }
-
-    /// A fresh handle, freed on drop so a failing assertion does not leak it.
-    struct Handle(*mut idm_mesher2d);
-
-    impl Handle {
-        fn new() -> Self {
-            let mut m = std::ptr::null_mut();
-            assert_eq!(unsafe { idm_mesher2d_new(&mut m) }, IDM_OK);
-            assert!(!m.is_null());
-            Handle(m)
-        }
-    }
-
-    impl Drop for Handle {
-        fn drop(&mut self) {
-            unsafe { idm_mesher2d_free(self.0) };
-        }
-    }
+    /// A fresh handle, freed on drop.
+    type Handle = TestHandle<idm_mesher2d>;
 
     /// A 10x10 square with a 2x2 square hole in the middle; outer segments marker 1, hole
     /// segments marker 2, point markers 10 + index.
@@ -1191,6 +792,58 @@ mod tests {
         assert_eq!(o.max_steiner < 0, d.max_steiner.is_none());
         // The documented values of the header.
         assert_eq!((o.off_centers, o.max_steiner), (1, -1));
+    }
+
+    /// The options struct as a caller built against a newer header sees it: 16 bytes of
+    /// fields this library does not know after the ones it does.
+    #[repr(C, align(8))]
+    struct Bigger {
+        o: idm_options2d,
+        tail: [u8; 16],
+    }
+
+    #[test]
+    fn options_struct_size_is_checked_and_honoured() {
+        let m = Handle::new();
+        let size = std::mem::size_of::<idm_options2d>();
+        let mut o = options(25.0, 0.0);
+        assert_eq!(o.struct_size, size);
+        // A struct that never went through `_default` (a 0.1 caller, or garbage) is refused.
+        o.struct_size = 3;
+        assert_eq!(
+            unsafe { idm_mesher2d_set_options(m.0, &o) },
+            IDM_ERR_INVALID_ARGUMENT
+        );
+        assert!(last_error().contains("struct_size"), "{}", last_error());
+        // A newer caller's larger struct: the unknown tail is zeroed by `_default_sized` and
+        // accepted while zero; a set unknown field is refused, not dropped.
+        let mut b = Bigger {
+            o,
+            tail: [0xa5; 16],
+        };
+        let big = size + 16;
+        unsafe { idm_options2d_default_sized(&mut b.o, big) };
+        assert_eq!((b.o.struct_size, b.tail), (big, [0; 16]));
+        assert_eq!(b.o.off_centers, 1);
+        b.o.min_angle = 20.0;
+        assert_eq!(unsafe { idm_mesher2d_set_options(m.0, &b.o) }, IDM_OK);
+        assert_eq!(unsafe { &*m.0 }.opts.min_angle, Some(20.0));
+        b.tail[5] = 1;
+        assert_eq!(
+            unsafe { idm_mesher2d_set_options(m.0, &b.o) },
+            IDM_ERR_UNSUPPORTED
+        );
+        assert!(last_error().contains("does not know"), "{}", last_error());
+        assert_eq!(
+            unsafe { &*m.0 }.opts.min_angle,
+            Some(20.0),
+            "handle unchanged"
+        );
+        // Too small for any version: `_default_sized` leaves the struct alone.
+        let mut c = options(0.0, 0.0);
+        c.min_angle = 7.0;
+        unsafe { idm_options2d_default_sized(&mut c, 8) };
+        assert_eq!(c.min_angle, 7.0);
     }
 
     #[test]

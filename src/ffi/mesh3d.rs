@@ -2,23 +2,18 @@
 //!
 //! A thin layer over [`crate::tetrahedralize`] and [`crate::delaunay3d`]: a handle collects the
 //! PLC and the options, refine (or delaunay) runs the Rust mesher, and getters lend pointers
-//! into the resulting [`TetMesh`].
-//!
-//! Every convention of the 2D ABI ([`crate::ffi`]) holds here too, through the same helpers:
-//! panics caught in every entry point, pointers and counts checked before use, inputs copied,
-//! out-parameters written only on success, a failed call leaves the handle unchanged, and the
-//! one thread-local message read by `idm_last_error`.
-
-#![allow(non_camel_case_types)]
-#![deny(unsafe_op_in_unsafe_fn)]
+//! into the resulting [`TetMesh`]. Only what is 3D lives here (facets in CSR form, the
+//! statistics); every body goes through the shared machinery of [`super::common`].
 
 use std::ffi::c_void;
-use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::mem::size_of;
 use std::sync::Arc;
 
-use crate::ffi::{
-    array_ptr, check_index_room, check_out, guard, idm_status, input_slice, optional_slice,
-    reserve, scaled, write_out, Failure,
+use super::common::{
+    add_marked, change, check_index_room, check_out, counts, free_handle, guard, idm_status,
+    impl_handle, init_options, input_slice, lend, lend_plain, mesh_of, new_handle, positive,
+    read_options, reject_nan, reserve, run, scaled, steiner_cap_to_c, validate, CSizing, Failure,
+    Handle, SizedOptions,
 };
 use crate::input3d::{Facet, Plc, Region3};
 use crate::mesh3d::{delaunay3d, tetrahedralize, Options3, SizingFn3, TetMesh};
@@ -29,6 +24,10 @@ use crate::mesh3d::{delaunay3d, tetrahedralize, Options3, SizingFn3, TetMesh};
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct idm_options3d {
+    /// The size of this struct as the caller was compiled: `sizeof(idm_options3d)`, set by
+    /// `idm_options3d_default`. It lets a library and a caller built against different versions of
+    /// the header exchange the struct safely (see `idm_options3d_default_sized`).
+    pub struct_size: usize,
     /// Maximum radius-edge ratio (TetGen's `-q`); `<= 0` means no quality refinement. Must not
     /// be NaN; a positive value below 1 is rejected by refine. Default 0.
     pub radius_edge: f64,
@@ -106,134 +105,72 @@ pub struct idm_mesher3d {
     mesh: Option<TetMesh>,
 }
 
-/// The getters' failure when the handle holds no mesh.
-fn no_mesh() -> Failure {
-    Failure::new(
-        idm_status::IDM_ERR_NO_MESH,
-        "no mesh: call idm_mesher3d_refine or idm_mesher3d_delaunay first (the mesh is dropped \
-         when they fail or the input or options change)",
-    )
-}
+impl_handle!(
+    idm_mesher3d { plc, "idm_mesher3d_refine or idm_mesher3d_delaunay" },
+    TetMesh,
+    |_h, mesh| mesh.validate().map_err(|e| e.to_string())
+);
 
-/// Borrows the handle mutably.
-///
-/// # Safety
-/// `m` must be NULL or a live handle from `idm_mesher3d_new` not used elsewhere meanwhile.
-unsafe fn handle_mut<'a>(m: *mut idm_mesher3d) -> Result<&'a mut idm_mesher3d, Failure> {
-    // SAFETY: the caller's contract.
-    unsafe { m.as_mut() }.ok_or_else(|| Failure::null("m"))
-}
+/// The C sizing function of `idm_sizing3d_fn`.
+type SizingFn3C =
+    unsafe extern "C" fn(*mut c_void, *const f64, *const f64, *const f64, *const f64, f64) -> i32;
 
-/// Borrows the handle's mesh, or reports that there is none.
-///
-/// # Safety
-/// As [`handle_mut`].
-unsafe fn mesh_of<'a>(m: *const idm_mesher3d) -> Result<&'a TetMesh, Failure> {
-    // SAFETY: the caller's contract.
-    let m = unsafe { m.as_ref() }.ok_or_else(|| Failure::null("m"))?;
-    m.mesh.as_ref().ok_or_else(no_mesh)
-}
-
-/// The body of the array getters: checks the handle and the out-pointers, then lends the
-/// array chosen by `field` (NULL when empty), its parallel marker array when `markers` is not
-/// NULL (getters without markers pass NULL and an empty slice), and the element count.
-///
-/// # Safety
-/// As for the getters: `m` a live handle, `out`, `markers` and `count` NULL or valid for a
-/// write (`markers` may be NULL when not wanted).
-unsafe fn lend<T, U>(
-    m: *const idm_mesher3d,
-    out: *mut *const U,
-    markers: *mut *const i32,
-    count: *mut usize,
-    what: &str,
-    field: impl FnOnce(&TetMesh) -> (&[T], &[i32]),
-) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let mesh = unsafe { mesh_of(m) }?;
-        check_out(out, what)?;
-        if !markers.is_null() {
-            check_out(markers, "markers")?;
-        }
-        check_out(count, "count")?;
-        let (v, mk) = field(mesh);
-        unsafe {
-            out.write(array_ptr(v));
-            write_out(markers, array_ptr(mk));
-            count.write(v.len());
-        }
-        Ok(())
-    })
-}
-
-/// A C sizing callback with its user pointer, callable as a Rust [`SizingFn3`].
-#[derive(Clone, Copy)]
-struct CSizing3 {
-    f: unsafe extern "C" fn(
-        *mut c_void,
-        *const f64,
-        *const f64,
-        *const f64,
-        *const f64,
-        f64,
-    ) -> i32,
-    user: *mut c_void,
-}
-
-// SAFETY: the raw `user` pointer is what makes this type neither Send nor Sync. The mesher calls
-// the sizing function only inside `idm_mesher3d_refine`, from the thread that called it, and
-// keeps no copy after the handle is freed. Whether `user` (and the callback) may be used from
-// that thread is the caller's contract, stated in the header at `idm_sizing3d_fn` and
-// `idm_mesher3d_set_sizing`; Rust cannot check it.
-unsafe impl Send for CSizing3 {}
-// SAFETY: as for Send: concurrent use would require the caller to refine one handle from two
-// threads at once, which the header forbids.
-unsafe impl Sync for CSizing3 {}
-
-impl CSizing3 {
+impl CSizing<SizingFn3C> {
     /// Calls the C function. A method (rather than field accesses in the closure) so that the
     /// closure captures the whole `Send + Sync` struct, not its bare raw pointer.
     fn call(&self, a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3], volume: f64) -> bool {
-        // SAFETY: the pointers refer to locals that outlive the call; the function pointer and
-        // `user` are the caller's contract (see `idm_mesher3d_set_sizing`).
-        unsafe {
-            (self.f)(
-                self.user,
-                a.as_ptr(),
-                b.as_ptr(),
-                c.as_ptr(),
-                d.as_ptr(),
-                volume,
-            ) != 0
-        }
+        let [a, b, c, d] = [a.as_ptr(), b.as_ptr(), c.as_ptr(), d.as_ptr()];
+        // SAFETY: the pointers refer to arguments that outlive the call; the function pointer
+        // and `user` are the caller's contract (see `idm_mesher3d_set_sizing`).
+        unsafe { (self.f)(self.user, a, b, c, d, volume) != 0 }
     }
 }
 
-/// Fills `out` with the default options (the same defaults as the Rust `Options3::default()`).
-/// NULL is a no-op.
+/// Fills `out` with the default options (the same defaults as the Rust `Options3::default()`),
+/// `struct_size` included. NULL is a no-op. Through the header this is a macro that calls
+/// `idm_options3d_default_sized` with the caller's `sizeof(idm_options3d)`, so that a
+/// program built against an older, smaller struct keeps working with a newer library.
 ///
 /// # Safety
 /// `out` must be NULL or valid for writing an `idm_options3d`.
 #[no_mangle]
 pub unsafe extern "C" fn idm_options3d_default(out: *mut idm_options3d) {
-    if out.is_null() || !out.is_aligned() {
-        return;
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { init_options(out, size_of::<idm_options3d>()) }
+}
+
+/// `idm_options3d_default` for a caller's struct of `struct_size` bytes (the header's
+/// `idm_options3d_default` macro passes `sizeof(idm_options3d)`): the fields this library knows
+/// get their defaults and `struct_size` gets `struct_size`; bytes beyond them (fields of a
+/// newer header) are zeroed. NULL, or a `struct_size` smaller than any version's struct, is
+/// a no-op.
+///
+/// # Safety
+/// `out` must be NULL or valid for writing `struct_size` bytes.
+#[no_mangle]
+pub unsafe extern "C" fn idm_options3d_default_sized(out: *mut idm_options3d, struct_size: usize) {
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { init_options(out, struct_size) }
+}
+
+// SAFETY: `#[repr(C)]`, `struct_size: usize` first, only integer and float fields.
+unsafe impl SizedOptions for idm_options3d {
+    const BASELINE: usize = size_of::<idm_options3d>();
+    const NAME: &'static str = "idm_options3d";
+
+    fn defaults() -> Self {
+        let d = Options3::default();
+        idm_options3d {
+            struct_size: size_of::<idm_options3d>(),
+            radius_edge: d.radius_edge.unwrap_or(0.0),
+            max_volume: d.max_volume.unwrap_or(0.0),
+            region_max_volume: d.region_max_volume.into(),
+            region_attributes: d.region_attributes.into(),
+            max_steiner: steiner_cap_to_c(d.max_steiner),
+            verbose: d.verbose.into(),
+            keep_surface: d.keep_surface.into(),
+        }
     }
-    let d = Options3::default();
-    let value = idm_options3d {
-        radius_edge: d.radius_edge.unwrap_or(0.0),
-        max_volume: d.max_volume.unwrap_or(0.0),
-        region_max_volume: d.region_max_volume.into(),
-        region_attributes: d.region_attributes.into(),
-        max_steiner: d
-            .max_steiner
-            .map_or(-1, |n| i64::try_from(n).unwrap_or(i64::MAX)),
-        verbose: d.verbose.into(),
-        keep_surface: d.keep_surface.into(),
-    };
-    // SAFETY: checked non-null and aligned; validity is the caller's contract.
-    unsafe { out.write(value) };
 }
 
 /// Creates an empty 3D mesher with default options and stores it in `*out`.
@@ -242,17 +179,8 @@ pub unsafe extern "C" fn idm_options3d_default(out: *mut idm_options3d) {
 /// `out` must be NULL (an error) or valid for writing a pointer.
 #[no_mangle]
 pub unsafe extern "C" fn idm_mesher3d_new(out: *mut *mut idm_mesher3d) -> idm_status {
-    guard(|| {
-        check_out(out, "out")?;
-        let m = Box::new(idm_mesher3d {
-            plc: Plc::default(),
-            opts: Options3::default(),
-            mesh: None,
-        });
-        // SAFETY: checked above.
-        unsafe { out.write(Box::into_raw(m)) };
-        Ok(())
-    })
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { new_handle(out) }
 }
 
 /// Destroys a 3D mesher and everything it lent out. NULL is a no-op.
@@ -261,15 +189,8 @@ pub unsafe extern "C" fn idm_mesher3d_new(out: *mut *mut idm_mesher3d) -> idm_st
 /// `m` must be NULL or a handle from `idm_mesher3d_new` not freed before and not in use.
 #[no_mangle]
 pub unsafe extern "C" fn idm_mesher3d_free(m: *mut idm_mesher3d) {
-    if m.is_null() {
-        return;
-    }
-    // Dropping the handle runs no user code except the release of the sizing closure (a plain
-    // Arc); the guard keeps a panic there from unwinding into C all the same.
-    let _ = catch_unwind(AssertUnwindSafe(|| {
-        // SAFETY: the caller's contract.
-        drop(unsafe { Box::from_raw(m) });
-    }));
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { free_handle(m) }
 }
 
 /// Appends `count` points: `xyz` holds 3*count doubles (x0, y0, z0, x1, ...). `markers` is
@@ -285,24 +206,12 @@ pub unsafe extern "C" fn idm_mesher3d_add_points(
     count: usize,
     markers: *const i32,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let m = unsafe { handle_mut(m) }?;
-        let xyz = unsafe { input_slice(xyz, scaled(count, 3, "count")?, "xyz") }?;
-        let markers = unsafe { optional_slice(markers, count, "markers") }?;
-        check_index_room(m.plc.points.len(), count, "points")?;
-        reserve(&mut m.plc.points, count, "points")?;
-        reserve(&mut m.plc.point_markers, count, "point markers")?;
-        m.plc
-            .points
-            .extend(xyz.chunks_exact(3).map(|p| [p[0], p[1], p[2]]));
-        match markers {
-            Some(mk) => m.plc.point_markers.extend_from_slice(mk),
-            None => m.plc.point_markers.resize(m.plc.points.len(), 0),
-        }
-        m.mesh = None;
-        Ok(())
-    })
+    // SAFETY: the caller's contract, forwarded.
+    unsafe {
+        add_marked(m, xyz, count, markers, 0, ["xyz", "points"], |m| {
+            (&mut m.plc.points, &mut m.plc.point_markers)
+        })
+    }
 }
 
 /// Appends `count` free-standing segments (input edges): `ab` holds 2*count 0-based point
@@ -319,24 +228,12 @@ pub unsafe extern "C" fn idm_mesher3d_add_segments(
     count: usize,
     markers: *const i32,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let m = unsafe { handle_mut(m) }?;
-        let ab = unsafe { input_slice(ab, scaled(count, 2, "count")?, "ab") }?;
-        let markers = unsafe { optional_slice(markers, count, "markers") }?;
-        check_index_room(m.plc.segments.len(), count, "segments")?;
-        reserve(&mut m.plc.segments, count, "segments")?;
-        reserve(&mut m.plc.segment_markers, count, "segment markers")?;
-        m.plc
-            .segments
-            .extend(ab.chunks_exact(2).map(|s| [s[0], s[1]]));
-        match markers {
-            Some(mk) => m.plc.segment_markers.extend_from_slice(mk),
-            None => m.plc.segment_markers.resize(m.plc.segments.len(), 0),
-        }
-        m.mesh = None;
-        Ok(())
-    })
+    // SAFETY: the caller's contract, forwarded.
+    unsafe {
+        add_marked(m, ab, count, markers, 0, ["ab", "segments"], |m| {
+            (&mut m.plc.segments, &mut m.plc.segment_markers)
+        })
+    }
 }
 
 /// Checks the loop offsets of facet `facet` (CSR form: `num_loops + 1` entries, the first 0,
@@ -387,44 +284,43 @@ pub unsafe extern "C" fn idm_mesher3d_add_facet(
     num_holes: usize,
     marker: i32,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let m = unsafe { handle_mut(m) }?;
-        let facet = m.plc.facets.len();
-        if num_loops == 0 {
-            return Err(Failure::invalid(format!(
-                "facet {facet}: num_loops is 0 (a facet needs at least one polygon)"
-            )));
-        }
-        let num_offsets = num_loops
-            .checked_add(1)
-            .ok_or_else(|| Failure::invalid(format!("`num_loops` = {num_loops} is too large")))?;
-        let offsets = unsafe { input_slice(loop_offsets, num_offsets, "loop_offsets") }?;
-        let ranges = loop_ranges(offsets, facet)?;
-        let indices = unsafe { input_slice(indices, offsets[num_loops], "indices") }?;
-        let holes =
-            unsafe { input_slice(holes_xyz, scaled(num_holes, 3, "num_holes")?, "holes_xyz") }?;
-        check_index_room(facet, 1, "facets")?;
-        let mut polygons: Vec<Vec<u32>> = Vec::new();
-        reserve(&mut polygons, ranges.len(), "facet loops")?;
-        for r in ranges {
-            let mut poly = Vec::new();
-            reserve(&mut poly, r.len(), "facet loop indices")?;
-            poly.extend_from_slice(&indices[r]);
-            polygons.push(poly);
-        }
-        let mut hole_seeds = Vec::new();
-        reserve(&mut hole_seeds, num_holes, "facet holes")?;
-        hole_seeds.extend(holes.chunks_exact(3).map(|p| [p[0], p[1], p[2]]));
-        reserve(&mut m.plc.facets, 1, "facets")?;
-        m.plc.facets.push(Facet {
-            polygons,
-            holes: hole_seeds,
-            marker,
-        });
-        m.mesh = None;
-        Ok(())
-    })
+    // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+    unsafe {
+        change(m, |m| {
+            let facet = m.plc.facets.len();
+            if num_loops == 0 {
+                return Err(Failure::invalid(format!(
+                    "facet {facet}: num_loops is 0 (a facet needs at least one polygon)"
+                )));
+            }
+            let num_offsets = num_loops.checked_add(1).ok_or_else(|| {
+                Failure::invalid(format!("`num_loops` = {num_loops} is too large"))
+            })?;
+            let offsets = input_slice(loop_offsets, num_offsets, "loop_offsets")?;
+            let ranges = loop_ranges(offsets, facet)?;
+            let indices = input_slice(indices, offsets[num_loops], "indices")?;
+            let holes = input_slice(holes_xyz, scaled(num_holes, 3, "num_holes")?, "holes_xyz")?;
+            check_index_room(facet, 1, "facets")?;
+            let mut polygons: Vec<Vec<u32>> = Vec::new();
+            reserve(&mut polygons, ranges.len(), "facet loops")?;
+            for r in ranges {
+                let mut poly = Vec::new();
+                reserve(&mut poly, r.len(), "facet loop indices")?;
+                poly.extend_from_slice(&indices[r]);
+                polygons.push(poly);
+            }
+            let mut hole_seeds = Vec::new();
+            reserve(&mut hole_seeds, num_holes, "facet holes")?;
+            hole_seeds.extend(holes.chunks_exact(3).map(|p| [p[0], p[1], p[2]]));
+            reserve(&mut m.plc.facets, 1, "facets")?;
+            m.plc.facets.push(Facet {
+                polygons,
+                holes: hole_seeds,
+                marker,
+            });
+            Ok(())
+        })
+    }
 }
 
 /// Appends one volume hole seed: `xyz` holds 3 doubles. The tetrahedra reachable from the seed
@@ -437,15 +333,15 @@ pub unsafe extern "C" fn idm_mesher3d_add_hole(
     m: *mut idm_mesher3d,
     xyz: *const f64,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let m = unsafe { handle_mut(m) }?;
-        let p = unsafe { input_slice(xyz, 3, "xyz") }?;
-        reserve(&mut m.plc.holes, 1, "holes")?;
-        m.plc.holes.push([p[0], p[1], p[2]]);
-        m.mesh = None;
-        Ok(())
-    })
+    // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+    unsafe {
+        change(m, |m| {
+            let p = input_slice(xyz, 3, "xyz")?;
+            reserve(&mut m.plc.holes, 1, "holes")?;
+            m.plc.holes.push([p[0], p[1], p[2]]);
+            Ok(())
+        })
+    }
 }
 
 /// Appends one region seed: `xyz` holds 3 doubles (a point strictly inside the region),
@@ -463,25 +359,25 @@ pub unsafe extern "C" fn idm_mesher3d_add_region(
     attribute: f64,
     max_volume: f64,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let m = unsafe { handle_mut(m) }?;
-        let p = unsafe { input_slice(xyz, 3, "xyz") }?;
-        if max_volume.is_nan() {
-            return Err(Failure::invalid(format!(
-                "max_volume of region {} is NaN",
-                m.plc.regions.len()
-            )));
-        }
-        reserve(&mut m.plc.regions, 1, "regions")?;
-        m.plc.regions.push(Region3 {
-            point: [p[0], p[1], p[2]],
-            attribute,
-            max_volume: (max_volume > 0.0).then_some(max_volume),
-        });
-        m.mesh = None;
-        Ok(())
-    })
+    // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+    unsafe {
+        change(m, |m| {
+            let p = input_slice(xyz, 3, "xyz")?;
+            if max_volume.is_nan() {
+                return Err(Failure::invalid(format!(
+                    "max_volume of region {} is NaN",
+                    m.plc.regions.len()
+                )));
+            }
+            reserve(&mut m.plc.regions, 1, "regions")?;
+            m.plc.regions.push(Region3 {
+                point: [p[0], p[1], p[2]],
+                attribute,
+                max_volume: positive(max_volume),
+            });
+            Ok(())
+        })
+    }
 }
 
 /// Replaces the options (the sizing callback is kept; see `idm_mesher3d_set_sizing`). Value
@@ -494,31 +390,25 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
     m: *mut idm_mesher3d,
     opts: *const idm_options3d,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let m = unsafe { handle_mut(m) }?;
-        let o = unsafe { input_slice(opts, 1, "opts") }?[0];
-        if o.radius_edge.is_nan() {
-            return Err(Failure::invalid("option radius_edge is NaN"));
-        }
-        if o.max_volume.is_nan() {
-            return Err(Failure::invalid("option max_volume is NaN"));
-        }
-        let positive = |x: f64| (x > 0.0).then_some(x);
-        m.opts = Options3 {
-            radius_edge: positive(o.radius_edge),
-            max_volume: positive(o.max_volume),
-            region_max_volume: o.region_max_volume != 0,
-            region_attributes: o.region_attributes != 0,
-            max_steiner: u64::try_from(o.max_steiner).ok(),
-            sizing: m.opts.sizing.take(),
-            keep_surface: o.keep_surface != 0,
-            merge_coplanar: false,
-            verbose: o.verbose != 0,
-        };
-        m.mesh = None;
-        Ok(())
-    })
+    // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+    unsafe {
+        change(m, |m| {
+            let o = read_options(opts)?;
+            reject_nan(&[("radius_edge", o.radius_edge), ("max_volume", o.max_volume)])?;
+            m.opts = Options3 {
+                radius_edge: positive(o.radius_edge),
+                max_volume: positive(o.max_volume),
+                region_max_volume: o.region_max_volume != 0,
+                region_attributes: o.region_attributes != 0,
+                max_steiner: u64::try_from(o.max_steiner).ok(),
+                sizing: m.opts.sizing.take(),
+                keep_surface: o.keep_surface != 0,
+                merge_coplanar: false,
+                verbose: o.verbose != 0,
+            };
+            Ok(())
+        })
+    }
 }
 
 /// Sets the user sizing test (see `idm_sizing3d_fn`); `fn` NULL clears it (`user` is then
@@ -535,16 +425,16 @@ pub unsafe extern "C" fn idm_mesher3d_set_sizing(
     r#fn: idm_sizing3d_fn,
     user: *mut c_void,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let m = unsafe { handle_mut(m) }?;
-        m.opts.sizing = r#fn.map(|f| {
-            let c = CSizing3 { f, user };
-            Arc::new(move |a, b, c3, d, volume| c.call(a, b, c3, d, volume)) as SizingFn3
-        });
-        m.mesh = None;
-        Ok(())
-    })
+    // SAFETY: the caller's contract, forwarded.
+    unsafe {
+        change(m, |m| {
+            m.opts.sizing = r#fn.map(|f| {
+                let c = CSizing { f, user };
+                Arc::new(move |a, b, c3, d, volume| c.call(a, b, c3, d, volume)) as SizingFn3
+            });
+            Ok(())
+        })
+    }
 }
 
 /// Meshes the PLC with the current options (TetGen's `-p`), replacing any previous mesh.
@@ -556,26 +446,8 @@ pub unsafe extern "C" fn idm_mesher3d_set_sizing(
 /// `m` must be a live handle.
 #[no_mangle]
 pub unsafe extern "C" fn idm_mesher3d_refine(m: *mut idm_mesher3d) -> idm_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let m = unsafe { handle_mut(m) }?;
-        // Dropped first so that a failure (or a panic caught by the guard) leaves no stale mesh.
-        m.mesh = None;
-        let mesh = tetrahedralize(&m.plc, &m.opts)?;
-        let (complete, steiner) = (mesh.complete, mesh.steiner_points);
-        m.mesh = Some(mesh);
-        if complete {
-            Ok(())
-        } else {
-            Err(Failure::new(
-                idm_status::IDM_INCOMPLETE,
-                format!(
-                    "refinement stopped at the Steiner point cap after {steiner} Steiner \
-                     points: the mesh is valid but does not meet every bound"
-                ),
-            ))
-        }
-    })
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { run(m, true, |h| tetrahedralize(&h.plc, &h.opts)) }
 }
 
 /// Delaunay tetrahedralization of the points added so far (TetGen without `-p`), replacing
@@ -587,19 +459,18 @@ pub unsafe extern "C" fn idm_mesher3d_refine(m: *mut idm_mesher3d) -> idm_status
 /// `m` must be a live handle.
 #[no_mangle]
 pub unsafe extern "C" fn idm_mesher3d_delaunay(m: *mut idm_mesher3d) -> idm_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let m = unsafe { handle_mut(m) }?;
-        m.mesh = None;
-        let mut mesh = delaunay3d(&m.plc.points)?;
-        // `delaunay3d` sees coordinates only; the markers are the handle's to restore, as
-        // TetGen keeps the .node markers.
-        for (dst, &src) in mesh.vertex_markers.iter_mut().zip(&m.plc.point_markers) {
-            *dst = src;
-        }
-        m.mesh = Some(mesh);
-        Ok(())
-    })
+    // SAFETY: the caller's contract, forwarded.
+    unsafe {
+        run(m, false, |h| {
+            let mut mesh = delaunay3d(&h.plc.points)?;
+            // `delaunay3d` sees coordinates only; the markers are the handle's to restore, as
+            // TetGen keeps the .node markers.
+            for (dst, &src) in mesh.vertex_markers.iter_mut().zip(&h.plc.point_markers) {
+                *dst = src;
+            }
+            Ok(mesh)
+        })
+    }
 }
 
 /// The output sizes: vertices, tetrahedra, subfaces and subsegments. Each out-pointer may be
@@ -615,27 +486,23 @@ pub unsafe extern "C" fn idm_mesher3d_counts(
     num_faces: *mut usize,
     num_edges: *mut usize,
 ) -> idm_status {
-    guard(|| {
-        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
-        let mesh = unsafe { mesh_of(m) }?;
-        for (p, what) in [
-            (num_vertices, "num_vertices"),
-            (num_tets, "num_tets"),
-            (num_faces, "num_faces"),
-            (num_edges, "num_edges"),
-        ] {
-            if !p.is_null() {
-                check_out(p, what)?;
-            }
-        }
-        unsafe {
-            write_out(num_vertices, mesh.vertices.len());
-            write_out(num_tets, mesh.tets.len());
-            write_out(num_faces, mesh.faces.len());
-            write_out(num_edges, mesh.edges.len());
-        }
-        Ok(())
-    })
+    let outs = [
+        (num_vertices, "num_vertices"),
+        (num_tets, "num_tets"),
+        (num_faces, "num_faces"),
+        (num_edges, "num_edges"),
+    ];
+    // SAFETY: the caller's contract, forwarded.
+    unsafe {
+        counts(m, outs, |mesh| {
+            [
+                mesh.vertices.len(),
+                mesh.tets.len(),
+                mesh.faces.len(),
+                mesh.edges.len(),
+            ]
+        })
+    }
 }
 
 /// Lends the vertex coordinates: `*xyz` gets 3*count doubles, `*count` the number of vertices.
@@ -649,9 +516,8 @@ pub unsafe extern "C" fn idm_mesher3d_vertices(
     xyz: *mut *const f64,
     count: *mut usize,
 ) -> idm_status {
-    let none = std::ptr::null_mut();
     // SAFETY: the caller's contract, forwarded.
-    unsafe { lend(m, xyz, none, count, "xyz", |mesh| (&mesh.vertices, &[])) }
+    unsafe { lend_plain(m, xyz, count, "xyz", |mesh| &mesh.vertices) }
 }
 
 /// Lends one marker per vertex (`*count` = number of vertices): the input marker for input
@@ -665,13 +531,8 @@ pub unsafe extern "C" fn idm_mesher3d_vertex_markers(
     markers: *mut *const i32,
     count: *mut usize,
 ) -> idm_status {
-    let none = std::ptr::null_mut();
     // SAFETY: the caller's contract, forwarded.
-    unsafe {
-        lend(m, markers, none, count, "markers", |mesh| {
-            (&mesh.vertex_markers, &[])
-        })
-    }
+    unsafe { lend_plain(m, markers, count, "markers", |mesh| &mesh.vertex_markers) }
 }
 
 /// Lends the tetrahedra: `*abcd` gets 4*count vertex indices, each tetrahedron positively
@@ -685,9 +546,8 @@ pub unsafe extern "C" fn idm_mesher3d_tets(
     abcd: *mut *const u32,
     count: *mut usize,
 ) -> idm_status {
-    let none = std::ptr::null_mut();
     // SAFETY: the caller's contract, forwarded.
-    unsafe { lend(m, abcd, none, count, "abcd", |mesh| (&mesh.tets, &[])) }
+    unsafe { lend_plain(m, abcd, count, "abcd", |mesh| &mesh.tets) }
 }
 
 /// Lends the neighbours: `*nbr` gets 4*count tetrahedron indices; entry 4t+i is the
@@ -702,9 +562,8 @@ pub unsafe extern "C" fn idm_mesher3d_neighbors(
     nbr: *mut *const u32,
     count: *mut usize,
 ) -> idm_status {
-    let none = std::ptr::null_mut();
     // SAFETY: the caller's contract, forwarded.
-    unsafe { lend(m, nbr, none, count, "nbr", |mesh| (&mesh.neighbors, &[])) }
+    unsafe { lend_plain(m, nbr, count, "nbr", |mesh| &mesh.neighbors) }
 }
 
 /// Lends one regional attribute per tetrahedron (0 for tetrahedra in no region). `*count` is
@@ -718,13 +577,8 @@ pub unsafe extern "C" fn idm_mesher3d_tet_attributes(
     attr: *mut *const f64,
     count: *mut usize,
 ) -> idm_status {
-    let none = std::ptr::null_mut();
     // SAFETY: the caller's contract, forwarded.
-    unsafe {
-        lend(m, attr, none, count, "attr", |mesh| {
-            (&mesh.tet_attributes, &[])
-        })
-    }
+    unsafe { lend_plain(m, attr, count, "attr", |mesh| &mesh.tet_attributes) }
 }
 
 /// Lends the subfaces (boundary faces and faces lying in input facets): `*abc` gets 3*count
@@ -805,61 +659,22 @@ pub unsafe extern "C" fn idm_mesher3d_stats(
 /// `m` must be a live handle.
 #[no_mangle]
 pub unsafe extern "C" fn idm_mesher3d_validate(m: *const idm_mesher3d) -> idm_status {
-    guard(|| {
-        // SAFETY: the caller's contract.
-        let mesh = unsafe { mesh_of(m) }?;
-        mesh.validate().map_err(|e| {
-            Failure::new(
-                idm_status::IDM_ERR_INTERNAL,
-                format!("mesh validation failed: {e}"),
-            )
-        })
-    })
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { validate(m) }
 }
 
 #[cfg(test)]
 mod tests {
+    use super::super::common::testing::{last_error, TestHandle};
     use super::*;
     use crate::error::Error;
     use crate::predicates::orient3d;
-    use std::ffi::CStr;
+    use crate::NONE;
 
     use idm_status::*;
 
-    /// The current thread's last error as a Rust string.
-    fn last_error() -> String {
-        // SAFETY: idm_last_error never returns NULL and the string lives until the next call.
-        unsafe { CStr::from_ptr(crate::ffi::idm_last_error()) }
-            .to_str()
-            .unwrap()
-            .to_string()
-    }
-
-    /// A fresh handle, freed on drop so a failing assertion does not leak it.
-    struct Handle(*mut idm_mesher3d);
-
-    impl Handle {
-        fn new() -> Self {
-            let mut m = std::ptr::null_mut();
-            assert_eq!(unsafe { idm_mesher3d_new(&mut m) }, IDM_OK);
-            assert!(!m.is_null());
-            Handle(m)
-        }
-
-        fn get(&self) -> &idm_mesher3d {
-            unsafe { &*self.0 }
-        }
-
-        fn get_mut(&mut self) -> &mut idm_mesher3d {
-            unsafe { &mut *self.0 }
-        }
-    }
-
-    impl Drop for Handle {
-        fn drop(&mut self) {
-            unsafe { idm_mesher3d_free(self.0) };
-        }
-    }
+    /// A fresh handle, freed on drop.
+    type Handle = TestHandle<idm_mesher3d>;
 
     /// The unit cube: corners 0-3 at z = 0 and 4-7 at z = 1 (markers 10 + index), six square
     /// facets with markers 1..=6; the top facet carries a segment and a point of the facet
@@ -1064,7 +879,7 @@ mod tests {
             vertex_markers: vec![5, 6, 7, 8],
             num_input_vertices: 4,
             tets: vec![[0, 1, 2, 3]],
-            neighbors: vec![[NONE_U32; 4]],
+            neighbors: vec![[NONE; 4]],
             tet_attributes: vec![2.5],
             faces: vec![[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]],
             face_markers: vec![1, 2, 3, 4],
@@ -1075,8 +890,6 @@ mod tests {
             surface_kept: false,
         }
     }
-
-    const NONE_U32: u32 = crate::mesh3d::NONE;
 
     /// TetGen's positive orientation, exactly: det[b − a, c − a, d − a] > 0, which is
     /// Shewchuk's orient3d < 0 (pinned by the reference tetrahedron of `one_tet`).
@@ -1601,9 +1414,12 @@ mod tests {
         assert!(!last_error().is_empty());
         // A successful 2D call clears the message of a failed 3D call: one error per thread.
         let mut m2 = std::ptr::null_mut();
-        assert_eq!(unsafe { crate::ffi::idm_mesher2d_new(&mut m2) }, IDM_OK);
+        assert_eq!(
+            unsafe { super::super::mesh2d::idm_mesher2d_new(&mut m2) },
+            IDM_OK
+        );
         assert_eq!(last_error(), "");
-        unsafe { crate::ffi::idm_mesher2d_free(m2) };
+        unsafe { super::super::mesh2d::idm_mesher2d_free(m2) };
     }
 
     #[test]

@@ -262,6 +262,81 @@ typedef struct idm_stats3d {
   int32_t complete;
 } idm_stats3d;
 
+/**
+ * Triangle's switches, parsed (`idm_triangle_parse_switches`). Booleans are `int32_t`: 0 or 1.
+ */
+typedef struct idm_triangle_switches {
+  /**
+   * The mesher options they ask for (`q a Y S c`; `a` without a number and `A` only with
+   * `p`, as in Triangle), ready for `idm_mesher2d_set_options`.
+   */
+  struct idm_options2d options;
+  /**
+   * `p`: the input is a PSLG (segments, holes and regions are read).
+   */
+  int32_t poly;
+  /**
+   * `u`: call the user's sizing test.
+   */
+  int32_t user_test;
+  /**
+   * `A`: regional attributes are output (only with `p`).
+   */
+  int32_t region_attributes;
+  /**
+   * `c`: the convex hull is meshed.
+   */
+  int32_t convex_hull;
+  /**
+   * `e`: output the edges.
+   */
+  int32_t edges;
+  /**
+   * `n`: output the neighbours.
+   */
+  int32_t neighbors;
+  /**
+   * `B`: no boundary markers in the output.
+   */
+  int32_t no_boundary_markers;
+  /**
+   * `P`: no segments in the output.
+   */
+  int32_t no_poly;
+  /**
+   * `N`: no vertices in the output.
+   */
+  int32_t no_node;
+  /**
+   * `E`: no triangles in the output.
+   */
+  int32_t no_ele;
+  /**
+   * `O`: the holes are ignored.
+   */
+  int32_t ignore_holes;
+  /**
+   * `z`: items are numbered from 0 (else from 1).
+   */
+  int32_t zero_based;
+  /**
+   * `Y`: no Steiner points on boundary segments.
+   */
+  int32_t no_boundary_steiner;
+  /**
+   * `C`: check the mesh after meshing (`idm_mesher2d_validate`).
+   */
+  int32_t check;
+  /**
+   * `Q`: print nothing but errors.
+   */
+  int32_t quiet;
+  /**
+   * `V`: print statistics.
+   */
+  int32_t verbose;
+} idm_triangle_switches;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -726,6 +801,57 @@ enum idm_status idm_mesher3d_stats(const struct idm_mesher3d *m, struct idm_stat
  * `m` must be a live handle.
  */
 enum idm_status idm_mesher3d_validate(const struct idm_mesher3d *m);
+
+/**
+ * Parses a switch string as Triangle's `triangulate()` takes it (`"pq30a0.1zQ"`; a leading
+ * `-` is tolerated) into `*out`. A switch Triangle does not know is `IDM_ERR_INVALID_ARGUMENT`;
+ * one the C ABI cannot honour (`r j v o2 YY w W`) is `IDM_ERR_UNSUPPORTED`; the message names
+ * it. Never ignores a switch.
+ *
+ * # Safety
+ * `text` must be NULL (an error) or a NUL-terminated string; `out` NULL (an error) or valid
+ * for writing an `idm_triangle_switches`.
+ */
+enum idm_status idm_triangle_parse_switches(const char *text, struct idm_triangle_switches *out);
+
+/**
+ * Records `message` (NULL: a generic one) as this thread's `idm_last_error()` and returns
+ * `status` (`IDM_OK` is turned into `IDM_ERR_INVALID_ARGUMENT`). For shims over the C ABI
+ * (such as `compat/triangle`) that find an error before calling the library.
+ *
+ * # Safety
+ * `message` must be NULL or a NUL-terminated string.
+ */
+enum idm_status idm_triangle_fail(enum idm_status status, const char *message);
+
+/**
+ * Every edge of the mesh once (Triangle's `-e` output), as 0-based vertex pairs in `ab`, with
+ * its marker in `markers`: the segment's marker for edges on a segment, else 0. Call with
+ * `ab` and `markers` NULL to learn `*count`, then with arrays of `capacity >= *count`.
+ *
+ * # Safety
+ * `m` a live handle; `ab` NULL or valid for `2*capacity` writes, `markers` NULL or valid for
+ * `capacity`, `count` valid for a write.
+ */
+enum idm_status idm_triangle_edges(const struct idm_mesher2d *m,
+                                   uint32_t *ab,
+                                   int32_t *markers,
+                                   size_t capacity,
+                                   size_t *count);
+
+/**
+ * The segments as Triangle outputs them (with `-p` or `-c`): the subsegments, then every
+ * boundary edge that is no subsegment (the convex hull of a point set) with marker 1. Same
+ * calling convention as `idm_triangle_edges`.
+ *
+ * # Safety
+ * As `idm_triangle_edges`.
+ */
+enum idm_status idm_triangle_segments(const struct idm_mesher2d *m,
+                                      uint32_t *ab,
+                                      int32_t *markers,
+                                      size_t capacity,
+                                      size_t *count);
 
 #ifdef __cplusplus
 }  // extern "C"

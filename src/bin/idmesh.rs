@@ -7,8 +7,6 @@
 // The crate root sits in src/bin/, so submodules need explicit paths.
 #[path = "idmesh/names.rs"]
 mod names;
-#[path = "idmesh/switches.rs"]
-mod switches;
 #[path = "idmesh/tetgen_cmd.rs"]
 mod tetgen_cmd;
 #[path = "idmesh/tetgen_switches.rs"]

@@ -15,9 +15,10 @@ if [ ${#need_apt[@]} -gt 0 ]; then
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${need_apt[@]}" >/dev/null
 fi
-if ! python3 -c 'import numpy, scipy' >/dev/null 2>&1; then
-  echo "== installing Python packages: numpy scipy"
-  python3 -m pip install -q numpy scipy || python3 -m pip install -q --break-system-packages numpy scipy
+if ! python3 -c 'import numpy, scipy, triangle' >/dev/null 2>&1; then
+  echo "== installing Python packages: numpy scipy triangle"
+  python3 -m pip install -q numpy scipy triangle ||
+    python3 -m pip install -q --break-system-packages numpy scipy triangle
 fi
 
 echo "== cargo fmt --check"

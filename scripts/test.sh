@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 need_apt=()
-for pkg in cmake g++ libcgal-dev libgmp-dev libmpfr-dev libtet1.5-dev tetgen python3-pip; do
+for pkg in cmake g++ pkg-config libcgal-dev libgmp-dev libmpfr-dev libtet1.5-dev tetgen python3-pip; do
   dpkg -s "$pkg" >/dev/null 2>&1 || need_apt+=("$pkg")
 done
 if [ ${#need_apt[@]} -gt 0 ]; then

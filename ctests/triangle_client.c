@@ -171,9 +171,48 @@ static void bad_inputs(void) {
   in.numberofsegments = 0;
   expect_failure("pQ", &in, "point");
   expect_failure("pQ", NULL, "NULL");
+  fill_domain(&in, 1, segments);
+  expect_failure("pvQ", &in, "vorout"); /* -v needs vorout */
   /* -u without triunsuitable() defined in this program. */
   fill_domain(&in, 1, segments);
   expect_failure("puQ", &in, "triunsuitable");
+}
+
+/* -v: one Voronoi vertex per triangle, its circumcentre; one Voronoi edge per mesh edge, a
+ * ray (second end -1, direction in normlist) for each hull edge. */
+static void voronoi(struct triangulateio *in) {
+  struct triangulateio out, vor;
+  char sw[] = "vezQ";
+  int i, k, rays = 0;
+  clear(&out);
+  clear(&vor);
+  triangulate(sw, in, &out, &vor);
+  CHECK(vor.numberofpoints == out.numberoftriangles && vor.numberofpoints > 0,
+        "-v: %d Voronoi vertices for %d triangles (%s)", vor.numberofpoints,
+        out.numberoftriangles, idm_last_error());
+  CHECK(vor.numberofedges == out.numberofedges, "-v: %d Voronoi edges for %d edges",
+        vor.numberofedges, out.numberofedges);
+  for (i = 0; i < vor.numberofpoints; i++) {
+    double d[3];
+    for (k = 0; k < 3; k++) {
+      const double *p = &out.pointlist[2 * out.trianglelist[3 * i + k]];
+      d[k] = hypot(p[0] - vor.pointlist[2 * i], p[1] - vor.pointlist[2 * i + 1]);
+    }
+    CHECK(fabs(d[0] - d[1]) < 1e-12 && fabs(d[0] - d[2]) < 1e-12, "-v: circumcentre %d", i);
+  }
+  for (i = 0; i < vor.numberofedges; i++) {
+    int ray = vor.edgelist[2 * i + 1] == -1;
+    rays += ray;
+    CHECK(vor.edgelist[2 * i] >= 0 && vor.edgelist[2 * i] < vor.numberofpoints,
+          "-v: edge %d starts at %d", i, vor.edgelist[2 * i]);
+    CHECK(ray == (vor.normlist[2 * i] != 0 || vor.normlist[2 * i + 1] != 0),
+          "-v: normlist only on rays (edge %d)", i);
+  }
+  CHECK(rays == 4, "-v: %d rays, 4 hull edges", rays);
+  free_out(&out);
+  trifree(vor.pointlist);
+  trifree(vor.edgelist);
+  trifree(vor.normlist);
 }
 
 /* A point set (no -p): the convex hull is meshed; with -c its edges are output as segments
@@ -196,6 +235,7 @@ static void point_set(void) {
     CHECK(out.segmentmarkerlist[i] == 1 && out.segmentlist[2 * i] < 4, "hull segment %d", i);
   CHECK(out.holelist == NULL && out.numberofholes == 0, "no holes without -p");
   free_out(&out);
+  voronoi(&in);
   triangulate(sw2, &in, &out, NULL);
   CHECK(out.pointlist == NULL && out.trianglelist == NULL && out.segmentmarkerlist == NULL &&
             out.segmentlist != NULL && out.numberoftriangles == 6,

@@ -123,8 +123,8 @@ int main() {
     check(m.attrs[t] == 7.0, "regional attribute 7");
   }
   Mesh bad;
-  check(!mesh_l("pq28zAenvQ", bad), "-v is refused");
-  check(std::strstr(idm_last_error(), "-v") != nullptr, "the message names -v");
+  check(!mesh_l("pq28zAenrQ", bad), "-r is refused");
+  check(std::strstr(idm_last_error(), "-r") != nullptr, "the message names -r");
   Mesh again;
   check(mesh_l("pq30a0.01zAenQ", again), "the host goes on meshing after an error");
   if (failures) std::fprintf(stderr, "%d checks failed\n", failures);

@@ -335,6 +335,10 @@ typedef struct idm_triangle_switches {
    * `V`: print statistics.
    */
   int32_t verbose;
+  /**
+   * `v`: output the Voronoi diagram (`idm_triangle_voronoi`).
+   */
+  int32_t voronoi;
 } idm_triangle_switches;
 
 #ifdef __cplusplus
@@ -805,7 +809,7 @@ enum idm_status idm_mesher3d_validate(const struct idm_mesher3d *m);
 /**
  * Parses a switch string as Triangle's `triangulate()` takes it (`"pq30a0.1zQ"`; a leading
  * `-` is tolerated) into `*out`. A switch Triangle does not know is `IDM_ERR_INVALID_ARGUMENT`;
- * one the C ABI cannot honour (`r j v o2 YY w W`) is `IDM_ERR_UNSUPPORTED`; the message names
+ * one the C ABI cannot honour (`r j o2 YY w W`) is `IDM_ERR_UNSUPPORTED`; the message names
  * it. Never ignores a switch.
  *
  * # Safety
@@ -852,6 +856,30 @@ enum idm_status idm_triangle_segments(const struct idm_mesher2d *m,
                                       int32_t *markers,
                                       size_t capacity,
                                       size_t *count);
+
+/**
+ * The Voronoi diagram of the mesh as Triangle outputs it with `-v` (the dual of the
+ * triangulation, which is Delaunay): Voronoi vertex `t` is the circumcentre of triangle `t`
+ * (`points`, 2 per triangle); one Voronoi edge per mesh edge, joining the circumcentres of its
+ * two triangles (`edges`, 2 per edge, 0-based), or, for a boundary edge, a ray from its one
+ * triangle's circumcentre: second index -1 and `norms` holding the ray direction, the edge's
+ * outward normal (dy, -dx) for the edge taken counter-clockwise; `norms` is (0, 0) for finite
+ * edges. `*num_points` and `*num_edges` always get the sizes; the arrays (each optional) are
+ * filled when not NULL, which needs `capacity_points >= *num_points` and
+ * `capacity_edges >= *num_edges`.
+ *
+ * # Safety
+ * `m` a live handle; `points` NULL or valid for `2*capacity_points` writes, `edges` and
+ * `norms` NULL or valid for `2*capacity_edges`; `num_points`, `num_edges` valid for a write.
+ */
+enum idm_status idm_triangle_voronoi(const struct idm_mesher2d *m,
+                                     double *points,
+                                     int32_t *edges,
+                                     double *norms,
+                                     size_t capacity_points,
+                                     size_t capacity_edges,
+                                     size_t *num_points,
+                                     size_t *num_edges);
 
 #ifdef __cplusplus
 }  // extern "C"

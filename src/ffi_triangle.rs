@@ -14,9 +14,10 @@ use std::ffi::{c_char, CStr};
 
 use crate::ffi::{
     check_out, guard, idm_mesher2d, idm_mesher2d_neighbors, idm_mesher2d_segments,
-    idm_mesher2d_triangles, idm_options2d, idm_status, input_slice, Failure,
+    idm_mesher2d_triangles, idm_mesher2d_vertices, idm_options2d, idm_status, input_slice, Failure,
 };
-use crate::mesh2d::TriMesh;
+use crate::geometry::circumcenter;
+use crate::mesh2d::{TriMesh, NONE};
 use crate::switches::triangle::{output_segments, parse_library, Switches};
 
 /// The switches `idm_triangle_parse_switches` accepts: every Triangle switch whose meaning the
@@ -24,8 +25,8 @@ use crate::switches::triangle::{output_segments, parse_library, Switches};
 /// none of which changes what the output means, so they are accepted and do nothing; `g` writes
 /// a file only from Triangle's command line (its library writes nothing), likewise `I`.
 const C_HONOURED: &[&str] = &[
-    "p", "q", "a", "u", "A", "c", "D", "e", "n", "g", "B", "P", "N", "E", "I", "O", "X", "z", "Y",
-    "S", "i", "F", "l", "s", "C", "Q", "V",
+    "p", "q", "a", "u", "A", "c", "D", "e", "v", "n", "g", "B", "P", "N", "E", "I", "O", "X", "z",
+    "Y", "S", "i", "F", "l", "s", "C", "Q", "V",
 ];
 
 /// Triangle's switches, parsed (`idm_triangle_parse_switches`). Booleans are `int32_t`: 0 or 1.
@@ -67,6 +68,8 @@ pub struct idm_triangle_switches {
     pub quiet: i32,
     /// `V`: print statistics.
     pub verbose: i32,
+    /// `v`: output the Voronoi diagram (`idm_triangle_voronoi`).
+    pub voronoi: i32,
 }
 
 impl idm_triangle_switches {
@@ -103,13 +106,14 @@ impl idm_triangle_switches {
             check: b(s.check),
             quiet: b(s.quiet),
             verbose: b(s.verbose),
+            voronoi: b(s.voronoi),
         }
     }
 }
 
 /// Parses a switch string as Triangle's `triangulate()` takes it (`"pq30a0.1zQ"`; a leading
 /// `-` is tolerated) into `*out`. A switch Triangle does not know is `IDM_ERR_INVALID_ARGUMENT`;
-/// one the C ABI cannot honour (`r j v o2 YY w W`) is `IDM_ERR_UNSUPPORTED`; the message names
+/// one the C ABI cannot honour (`r j o2 YY w W`) is `IDM_ERR_UNSUPPORTED`; the message names
 /// it. Never ignores a switch.
 ///
 /// # Safety
@@ -170,7 +174,7 @@ pub unsafe extern "C" fn idm_triangle_fail(
 ///
 /// # Safety
 /// `m` must be NULL or a live handle.
-unsafe fn connectivity(m: *const idm_mesher2d) -> Result<TriMesh, Failure> {
+unsafe fn connectivity_of(m: *const idm_mesher2d) -> Result<TriMesh, Failure> {
     let status = |s: idm_status| {
         if s == idm_status::IDM_OK {
             Ok(())
@@ -223,7 +227,7 @@ unsafe fn pairs(
     count: *mut usize,
 ) -> idm_status {
     // SAFETY: the caller's contract, forwarded.
-    guard(|| unsafe { fill(&which(&connectivity(m)?), ab, markers, capacity, count) })
+    guard(|| unsafe { fill(&which(&connectivity_of(m)?), ab, markers, capacity, count) })
 }
 
 /// Writes `items` as `pairs` says.
@@ -303,6 +307,113 @@ pub unsafe extern "C" fn idm_triangle_segments(
     unsafe { pairs(m, output_segments, ab, markers, capacity, count) }
 }
 
+/// The Voronoi diagram of the mesh as Triangle outputs it with `-v` (the dual of the
+/// triangulation, which is Delaunay): Voronoi vertex `t` is the circumcentre of triangle `t`
+/// (`points`, 2 per triangle); one Voronoi edge per mesh edge, joining the circumcentres of its
+/// two triangles (`edges`, 2 per edge, 0-based), or, for a boundary edge, a ray from its one
+/// triangle's circumcentre: second index -1 and `norms` holding the ray direction, the edge's
+/// outward normal (dy, -dx) for the edge taken counter-clockwise; `norms` is (0, 0) for finite
+/// edges. `*num_points` and `*num_edges` always get the sizes; the arrays (each optional) are
+/// filled when not NULL, which needs `capacity_points >= *num_points` and
+/// `capacity_edges >= *num_edges`.
+///
+/// # Safety
+/// `m` a live handle; `points` NULL or valid for `2*capacity_points` writes, `edges` and
+/// `norms` NULL or valid for `2*capacity_edges`; `num_points`, `num_edges` valid for a write.
+#[no_mangle]
+pub unsafe extern "C" fn idm_triangle_voronoi(
+    m: *const idm_mesher2d,
+    points: *mut f64,
+    edges: *mut i32,
+    norms: *mut f64,
+    capacity_points: usize,
+    capacity_edges: usize,
+    num_points: *mut usize,
+    num_edges: *mut usize,
+) -> idm_status {
+    guard(|| {
+        check_out(num_points, "num_points")?;
+        check_out(num_edges, "num_edges")?;
+        // SAFETY: the caller's contract, forwarded; the lent array is read before any other
+        // call on the handle.
+        let mesh = unsafe { connectivity_of(m) }?;
+        let (mut xy, mut nv) = (std::ptr::null(), 0usize);
+        let st = unsafe { idm_mesher2d_vertices(m, &mut xy, &mut nv) };
+        if st != idm_status::IDM_OK {
+            return Err(Failure::new(st, "cannot read the vertices"));
+        }
+        let xy: &[[f64; 2]] = unsafe { input_slice(xy.cast(), nv, "vertices") }?;
+        let mut centres = Vec::with_capacity(mesh.triangles.len());
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            let [a, b, c] = tri.map(|v| xy[v as usize]);
+            centres.push(circumcenter(a, b, c).ok_or_else(|| {
+                Failure::new(
+                    idm_status::IDM_ERR_INTERNAL,
+                    format!("triangle {t} is degenerate: no circumcentre"),
+                )
+            })?);
+        }
+        let mut vedges: Vec<([i32; 2], [f64; 2])> = Vec::new();
+        for (t, (tri, nbr)) in mesh.triangles.iter().zip(&mesh.neighbors).enumerate() {
+            for i in 0..3 {
+                let n = nbr[i];
+                if n == NONE {
+                    let (a, b) = (xy[tri[(i + 1) % 3] as usize], xy[tri[(i + 2) % 3] as usize]);
+                    vedges.push(([t as i32, -1], [b[1] - a[1], a[0] - b[0]]));
+                } else if n as usize > t {
+                    vedges.push(([t as i32, n as i32], [0.0, 0.0]));
+                }
+            }
+        }
+        let i32_max = i32::MAX as usize;
+        if centres.len() > i32_max {
+            return Err(Failure::invalid("too many triangles for int indices"));
+        }
+        for (ptr, cap, need, what) in [
+            (
+                points.is_null(),
+                capacity_points,
+                centres.len(),
+                "capacity_points",
+            ),
+            (
+                edges.is_null() && norms.is_null(),
+                capacity_edges,
+                vedges.len(),
+                "capacity_edges",
+            ),
+        ] {
+            if !ptr && cap < need {
+                return Err(Failure::invalid(format!(
+                    "{what} {cap} is less than {need}"
+                )));
+            }
+        }
+        // SAFETY: lengths checked against the capacities above; the caller's contract.
+        unsafe {
+            for (k, p) in centres.iter().enumerate() {
+                if !points.is_null() {
+                    points.add(2 * k).write(p[0]);
+                    points.add(2 * k + 1).write(p[1]);
+                }
+            }
+            for (k, (e, nrm)) in vedges.iter().enumerate() {
+                if !edges.is_null() {
+                    edges.add(2 * k).write(e[0]);
+                    edges.add(2 * k + 1).write(e[1]);
+                }
+                if !norms.is_null() {
+                    norms.add(2 * k).write(nrm[0]);
+                    norms.add(2 * k + 1).write(nrm[1]);
+                }
+            }
+            num_points.write(centres.len());
+            num_edges.write(vedges.len());
+        }
+        Ok(())
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -331,6 +442,7 @@ mod tests {
         let s = parse("aA").unwrap();
         assert_eq!(s.options.region_max_area, 0, "regional bounds need p");
         assert_eq!(s.region_attributes, 0, "regional attributes need p");
+        assert_eq!(parse("pv").unwrap().voronoi, 1);
         let s = parse("-paAS10iFlsXgI").unwrap();
         assert_eq!((s.options.region_max_area, s.region_attributes), (1, 1));
         assert_eq!(s.options.max_steiner, 10);
@@ -338,7 +450,13 @@ mod tests {
 
     #[test]
     fn refuses_by_name() {
-        for (sw, name) in [("pr", "-r"), ("pj", "-j"), ("po2", "-o2"), ("pYY", "-YY")] {
+        for (sw, name) in [
+            ("pr", "-r"),
+            ("pj", "-j"),
+            ("po2", "-o2"),
+            ("pYY", "-YY"),
+            ("w", "-w"),
+        ] {
             let (st, msg) = parse(sw).unwrap_err();
             assert_eq!(st, IDM_ERR_UNSUPPORTED, "{sw}");
             assert!(msg.contains(name), "{sw}: {msg}");
@@ -415,6 +533,56 @@ mod tests {
             );
             assert!(mk.iter().all(|&k| k == 1), "hull edges get marker 1");
             assert!(ab.iter().all(|&v| v < 4), "hull edges join the corners");
+            // Voronoi: 4 circumcentres, 4 rays (the hull edges) and 4 finite edges.
+            let (mut np, mut ne) = (0usize, 0usize);
+            let nul = std::ptr::null_mut();
+            assert_eq!(
+                idm_triangle_voronoi(m, nul, nul.cast(), nul, 0, 0, &mut np, &mut ne),
+                IDM_OK
+            );
+            assert_eq!((np, ne), (4, 8));
+            let mut pts = vec![0.0; 2 * np];
+            let mut ed = vec![0i32; 2 * ne];
+            let mut nr = vec![0.0; 2 * ne];
+            let (pp, ep, rp) = (pts.as_mut_ptr(), ed.as_mut_ptr(), nr.as_mut_ptr());
+            assert_eq!(
+                idm_triangle_voronoi(m, pp, ep, rp, np, ne - 1, &mut np, &mut ne),
+                IDM_ERR_INVALID_ARGUMENT
+            );
+            assert_eq!(
+                idm_triangle_voronoi(m, pp, ep, rp, np, ne, &mut np, &mut ne),
+                IDM_OK
+            );
+            let (mut tri, mut nt, mut vx, mut nv) = (std::ptr::null(), 0, std::ptr::null(), 0);
+            assert_eq!(idm_mesher2d_triangles(m, &mut tri, &mut nt), IDM_OK);
+            assert_eq!(idm_mesher2d_vertices(m, &mut vx, &mut nv), IDM_OK);
+            let tri = std::slice::from_raw_parts(tri, 3 * nt);
+            let vx = std::slice::from_raw_parts(vx, 2 * nv);
+            for t in 0..nt {
+                let c = [pts[2 * t], pts[2 * t + 1]];
+                let d: Vec<f64> = (0..3)
+                    .map(|k| {
+                        let v = tri[3 * t + k] as usize;
+                        (vx[2 * v] - c[0]).hypot(vx[2 * v + 1] - c[1])
+                    })
+                    .collect();
+                assert!((d[0] - d[1]).abs() < 1e-12 && (d[0] - d[2]).abs() < 1e-12);
+            }
+            let mut ray_norms = Vec::new();
+            for k in 0..ne {
+                let n = [nr[2 * k], nr[2 * k + 1]];
+                let ray = ed[2 * k + 1] == -1;
+                assert_eq!(ray, n != [0.0, 0.0], "norms only on rays");
+                if ray {
+                    ray_norms.push(n);
+                } else {
+                    assert!(ed[2 * k] >= 0 && (ed[2 * k + 1] as usize) < nt);
+                }
+            }
+            ray_norms.sort_by(|a, b| a.partial_cmp(b).unwrap());
+            // The hull edges' outward normals (dy, -dx), one ray each.
+            let want = [[-1.0, 0.0], [0.0, -1.0], [0.0, 1.0], [1.0, 0.0]];
+            assert_eq!(ray_norms, want);
             idm_mesher2d_free(m);
         }
     }

@@ -25,7 +25,11 @@ struct result {
   int *segment_markers;
   int *edges;
   int *edge_markers;
-  int num_points, num_triangles, num_segments, num_edges;
+  double *voronoi_points;
+  int *voronoi_edges;
+  double *voronoi_norms;
+  int num_points, num_triangles, num_segments, num_edges, num_voronoi_points,
+      num_voronoi_edges;
 };
 
 static void free_result(struct result *r) {
@@ -38,6 +42,9 @@ static void free_result(struct result *r) {
   free(r->segment_markers);
   free(r->edges);
   free(r->edge_markers);
+  free(r->voronoi_points);
+  free(r->voronoi_edges);
+  free(r->voronoi_norms);
   memset(r, 0, sizeof *r);
 }
 
@@ -209,23 +216,42 @@ static idm_status read_mesh(const idm_mesher2d *m, const idm_triangle_switches *
     st = read_pairs(idm_triangle_edges, m, first, &r->edges, &r->edge_markers, &r->num_edges);
     if (st != IDM_OK) return st;
   }
+  if (sw->voronoi) {
+    size_t np = 0, ne = 0;
+    st = idm_triangle_voronoi(m, NULL, NULL, NULL, 0, 0, &np, &ne);
+    if (st != IDM_OK) return st;
+    if (ne > INT32_MAX / 2) return fail(IDM_ERR_INVALID_ARGUMENT, "too many Voronoi edges");
+    r->voronoi_points = (double *)alloc(2 * np, sizeof *r->voronoi_points);
+    r->voronoi_edges = (int *)alloc(2 * ne, sizeof *r->voronoi_edges);
+    r->voronoi_norms = (double *)alloc(2 * ne, sizeof *r->voronoi_norms);
+    if (r->voronoi_points == NULL || r->voronoi_edges == NULL || r->voronoi_norms == NULL)
+      return fail(IDM_ERR_INVALID_ARGUMENT, "out of memory for the Voronoi diagram");
+    st = idm_triangle_voronoi(m, r->voronoi_points, (int32_t *)r->voronoi_edges,
+                              r->voronoi_norms, np, ne, &np, &ne);
+    if (st != IDM_OK) return st;
+    for (i = 0; i < 2 * ne; i++)
+      if (r->voronoi_edges[i] >= 0) r->voronoi_edges[i] += first;
+    r->num_voronoi_points = (int)np;
+    r->num_voronoi_edges = (int)ne;
+  }
   return IDM_OK;
 }
 
 /* Hands an array to `out`: into the caller's array when it set one (Triangle writes through
  * such pointers), else the malloc'ed array itself, which `out` then owns. */
-#define GIVE(field, mine, n)                                                    \
+#define GIVE_TO(io, field, mine, n)                                             \
   do {                                                                          \
-    if (out->field != NULL) {                                                   \
-      if ((n) > 0) memcpy(out->field, (mine), (size_t)(n) * sizeof *(mine));    \
+    if ((io)->field != NULL) {                                                  \
+      if ((n) > 0) memcpy((io)->field, (mine), (size_t)(n) * sizeof *(mine));   \
     } else {                                                                    \
-      out->field = (mine);                                                      \
+      (io)->field = (mine);                                                     \
       (mine) = NULL;                                                            \
     }                                                                           \
   } while (0)
+#define GIVE(field, mine, n) GIVE_TO(out, field, mine, n)
 
 static void commit(const idm_triangle_switches *sw, struct triangulateio *in,
-                   struct triangulateio *out, struct result *r) {
+                   struct triangulateio *out, struct triangulateio *vorout, struct result *r) {
   out->numberofpoints = r->num_points;
   out->numberofpointattributes = 0;
   if (!sw->no_node) {
@@ -256,10 +282,18 @@ static void commit(const idm_triangle_switches *sw, struct triangulateio *in,
     GIVE(edgelist, r->edges, 2 * r->num_edges);
     if (!sw->no_boundary_markers) GIVE(edgemarkerlist, r->edge_markers, r->num_edges);
   }
+  if (sw->voronoi) {
+    vorout->numberofpoints = r->num_voronoi_points;
+    vorout->numberofpointattributes = 0;
+    GIVE_TO(vorout, pointlist, r->voronoi_points, 2 * r->num_voronoi_points);
+    vorout->numberofedges = r->num_voronoi_edges;
+    GIVE_TO(vorout, edgelist, r->voronoi_edges, 2 * r->num_voronoi_edges);
+    GIVE_TO(vorout, normlist, r->voronoi_norms, 2 * r->num_voronoi_edges);
+  }
 }
 
 static idm_status run(char *triswitches, struct triangulateio *in, struct triangulateio *out,
-                      idm_triangle_switches *sw, int *quiet) {
+                      struct triangulateio *vorout, idm_triangle_switches *sw, int *quiet) {
   idm_mesher2d *m = NULL;
   struct result r;
   idm_status st;
@@ -270,6 +304,7 @@ static idm_status run(char *triswitches, struct triangulateio *in, struct triang
   if ((st = idm_triangle_parse_switches(triswitches, sw)) != IDM_OK) return st;
   *quiet = sw->quiet != 0;
   if (in == NULL || out == NULL) return fail(IDM_ERR_NULL_POINTER, "in or out is NULL");
+  if (sw->voronoi && vorout == NULL) return fail(IDM_ERR_NULL_POINTER, "-v with vorout NULL");
   if (sw->user_test && &triunsuitable == NULL)
     return fail(IDM_ERR_INVALID_ARGUMENT, "-u needs the program to define triunsuitable()");
   first = sw->zero_based ? 0 : 1;
@@ -289,7 +324,7 @@ static idm_status run(char *triswitches, struct triangulateio *in, struct triang
   if (st == IDM_OK && sw->check) st = idm_mesher2d_validate(m);
   if (st == IDM_OK) st = read_mesh(m, sw, first, &r);
   if (st == IDM_OK) {
-    commit(sw, in, out, &r);
+    commit(sw, in, out, vorout, &r);
     if (sw->verbose && !sw->quiet)
       printf("triangle (idmesh): %d vertices, %d triangles, %d segments, %d edges\n",
              r.num_points, r.num_triangles, r.num_segments, r.num_edges);
@@ -303,8 +338,7 @@ void triangulate(char *triswitches, struct triangulateio *in, struct triangulate
                  struct triangulateio *vorout) {
   idm_triangle_switches sw;
   int quiet = 0;
-  (void)vorout; /* -v is refused by the switch parser. */
-  if (run(triswitches, in, out, &sw, &quiet) == IDM_OK) return;
+  if (run(triswitches, in, out, vorout, &sw, &quiet) == IDM_OK) return;
   /* Where Triangle would exit(1): empty outputs, the message, and return. */
   if (out != NULL) {
     out->numberofpoints = 0;
@@ -315,6 +349,10 @@ void triangulate(char *triswitches, struct triangulateio *in, struct triangulate
     out->numberofholes = 0;
     out->numberofregions = 0;
     out->numberofedges = 0;
+  }
+  if (vorout != NULL) {
+    vorout->numberofpoints = 0;
+    vorout->numberofedges = 0;
   }
   if (!quiet) fprintf(stderr, "triangle (idmesh): error: %s\n", idm_last_error());
 }

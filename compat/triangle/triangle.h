@@ -9,7 +9,7 @@
  *   - Errors never exit: where Triangle prints a message and calls exit(1), triangulate()
  *     prints the message on stderr (unless -Q), leaves every output empty (counts 0, no array
  *     allocated) and returns; idm_last_error() (declared in idmesh.h) gives the message.
- *   - Switches idmesh cannot honour (r j v o2 YY) are refused by name as above, never ignored.
+ *   - Switches idmesh cannot honour (r j o2 YY) are refused by name as above, never ignored.
  *     i F l s X (algorithm and arithmetic choices of Triangle) are accepted and do nothing;
  *     g and I, which only affect Triangle's files, are accepted and do nothing (as in
  *     Triangle's library).
@@ -61,12 +61,13 @@ struct triangulateio {
 
   int *edgelist;                   /* Out only (-e): 2 per edge. */
   int *edgemarkerlist;             /* Out only (-e, not -B): 1 per edge. */
-  double *normlist;                /* Out only, Voronoi diagram (-v, refused). */
+  double *normlist;                /* Out only, Voronoi diagram (-v): ray directions. */
   int numberofedges;               /* Out only. */
 };
 
 /* Meshes `in` as the switch string says (Triangle's letters, no leading dash needed) and fills
- * `out` (and would fill `vorout` with -v, which is refused). Output arrays whose pointer is
+ * `out`, and with -v `vorout` (Voronoi vertices = circumcentres, one per triangle; one Voronoi
+ * edge per mesh edge, second index -1 and normlist the outward direction for rays). Output arrays whose pointer is
  * NULL are allocated with malloc (free them with trifree or free); a pointer the caller set
  * before the call is written through as Triangle does, so it must point to enough memory. */
 void triangulate(char *triswitches, struct triangulateio *in, struct triangulateio *out,

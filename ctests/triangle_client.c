@@ -156,7 +156,7 @@ static void bad_inputs(void) {
   fill_domain(&in, 1, segments);
   expect_failure("prQ", &in, "-r");    /* refused by name */
   expect_failure("pkQ", &in, "-k");    /* unknown to Triangle */
-  expect_failure("po2Q", &in, "-o2");
+  expect_failure("pjQ", &in, "-j");
   expect_failure("pq30a-1Q", &in, "'-'");
   segments[5] = 99;                    /* a segment to a missing point */
   expect_failure("pQ", &in, "segment");
@@ -215,6 +215,36 @@ static void voronoi(struct triangulateio *in) {
   trifree(vor.normlist);
 }
 
+/* -o2: 6 nodes per triangle, the last three the midpoints of the edges opposite the first
+ * three, each midpoint one new vertex shared by the triangles of its edge. */
+static void second_order(struct triangulateio *in) {
+  struct triangulateio plain, out;
+  char sw1[] = "czQ", sw2[] = "co2zQ";
+  int t, k;
+  clear(&plain);
+  clear(&out);
+  triangulate(sw1, in, &plain, NULL);
+  triangulate(sw2, in, &out, NULL);
+  CHECK(out.numberofcorners == 6 && out.numberoftriangles == plain.numberoftriangles,
+        "-o2: %d corners (%s)", out.numberofcorners, idm_last_error());
+  /* Euler: edges = vertices + triangles - 1 for a disc; one midpoint per edge. */
+  CHECK(out.numberofpoints == 2 * plain.numberofpoints + plain.numberoftriangles - 1,
+        "-o2: %d points from %d vertices and %d triangles", out.numberofpoints,
+        plain.numberofpoints, plain.numberoftriangles);
+  for (t = 0; t < out.numberoftriangles; t++)
+    for (k = 0; k < 3; k++) {
+      const int *n = &out.trianglelist[6 * t];
+      const double *a = &out.pointlist[2 * n[(k + 1) % 3]], *b = &out.pointlist[2 * n[(k + 2) % 3]];
+      const double *mid = &out.pointlist[2 * n[3 + k]];
+      CHECK(n[k] == plain.trianglelist[3 * t + k], "-o2: corner %d of triangle %d", k, t);
+      CHECK(n[3 + k] >= plain.numberofpoints && mid[0] == 0.5 * (a[0] + b[0]) &&
+                mid[1] == 0.5 * (a[1] + b[1]),
+            "-o2: node %d of triangle %d is not the midpoint opposite corner %d", 3 + k, t, k);
+    }
+  free_out(&plain);
+  free_out(&out);
+}
+
 /* A point set (no -p): the convex hull is meshed; with -c its edges are output as segments
  * with marker 1, and -B leaves the markers out; -N -E leave vertices and triangles out. */
 static void point_set(void) {
@@ -236,6 +266,7 @@ static void point_set(void) {
   CHECK(out.holelist == NULL && out.numberofholes == 0, "no holes without -p");
   free_out(&out);
   voronoi(&in);
+  second_order(&in);
   triangulate(sw2, &in, &out, NULL);
   CHECK(out.pointlist == NULL && out.trianglelist == NULL && out.segmentmarkerlist == NULL &&
             out.segmentlist != NULL && out.numberoftriangles == 6,

@@ -339,6 +339,10 @@ typedef struct idm_triangle_switches {
    * `v`: output the Voronoi diagram (`idm_triangle_voronoi`).
    */
   int32_t voronoi;
+  /**
+   * `o2`: second-order (6-node) triangles (`idm_triangle_second_order`).
+   */
+  int32_t second_order;
 } idm_triangle_switches;
 
 #ifdef __cplusplus
@@ -809,7 +813,7 @@ enum idm_status idm_mesher3d_validate(const struct idm_mesher3d *m);
 /**
  * Parses a switch string as Triangle's `triangulate()` takes it (`"pq30a0.1zQ"`; a leading
  * `-` is tolerated) into `*out`. A switch Triangle does not know is `IDM_ERR_INVALID_ARGUMENT`;
- * one the C ABI cannot honour (`r j o2 YY w W`) is `IDM_ERR_UNSUPPORTED`; the message names
+ * one the C ABI cannot honour (`r j YY w W`) is `IDM_ERR_UNSUPPORTED`; the message names
  * it. Never ignores a switch.
  *
  * # Safety
@@ -880,6 +884,29 @@ enum idm_status idm_triangle_voronoi(const struct idm_mesher2d *m,
                                      size_t capacity_edges,
                                      size_t *num_points,
                                      size_t *num_edges);
+
+/**
+ * The extra nodes of second-order (6-node) triangles, Triangle's `-o2`: one new vertex at the
+ * midpoint of every mesh edge, numbered after the mesh's vertices (the first new one is
+ * number `num_vertices`) in order of first use. `xy` gets 2 coordinates and `markers` 1 marker
+ * per new vertex (the segment's marker for the midpoint of a subsegment, else 0); `nodes` gets
+ * 3 vertex numbers per triangle: the midpoints opposite its corners 0, 1 and 2 (Triangle's
+ * nodes 4, 5, 6). `*num_new` always gets the number of new vertices; the arrays (each
+ * optional) are filled when not NULL, which needs `capacity_vertices >= *num_new` and
+ * `capacity_triangles >=` the number of triangles.
+ *
+ * # Safety
+ * `m` a live handle; `xy` NULL or valid for `2*capacity_vertices` writes, `markers` NULL or
+ * valid for `capacity_vertices`, `nodes` NULL or valid for `3*capacity_triangles`; `num_new`
+ * valid for a write.
+ */
+enum idm_status idm_triangle_second_order(const struct idm_mesher2d *m,
+                                          double *xy,
+                                          int32_t *markers,
+                                          size_t capacity_vertices,
+                                          uint32_t *nodes,
+                                          size_t capacity_triangles,
+                                          size_t *num_new);
 
 #ifdef __cplusplus
 }  // extern "C"

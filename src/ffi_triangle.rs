@@ -26,7 +26,7 @@ use crate::switches::triangle::{output_segments, parse_library, Switches};
 /// a file only from Triangle's command line (its library writes nothing), likewise `I`.
 const C_HONOURED: &[&str] = &[
     "p", "q", "a", "u", "A", "c", "D", "e", "v", "n", "g", "B", "P", "N", "E", "I", "O", "X", "z",
-    "Y", "S", "i", "F", "l", "s", "C", "Q", "V",
+    "o2", "Y", "S", "i", "F", "l", "s", "C", "Q", "V",
 ];
 
 /// Triangle's switches, parsed (`idm_triangle_parse_switches`). Booleans are `int32_t`: 0 or 1.
@@ -70,6 +70,8 @@ pub struct idm_triangle_switches {
     pub verbose: i32,
     /// `v`: output the Voronoi diagram (`idm_triangle_voronoi`).
     pub voronoi: i32,
+    /// `o2`: second-order (6-node) triangles (`idm_triangle_second_order`).
+    pub second_order: i32,
 }
 
 impl idm_triangle_switches {
@@ -107,13 +109,14 @@ impl idm_triangle_switches {
             quiet: b(s.quiet),
             verbose: b(s.verbose),
             voronoi: b(s.voronoi),
+            second_order: b(s.second_order),
         }
     }
 }
 
 /// Parses a switch string as Triangle's `triangulate()` takes it (`"pq30a0.1zQ"`; a leading
 /// `-` is tolerated) into `*out`. A switch Triangle does not know is `IDM_ERR_INVALID_ARGUMENT`;
-/// one the C ABI cannot honour (`r j o2 YY w W`) is `IDM_ERR_UNSUPPORTED`; the message names
+/// one the C ABI cannot honour (`r j YY w W`) is `IDM_ERR_UNSUPPORTED`; the message names
 /// it. Never ignores a switch.
 ///
 /// # Safety
@@ -414,6 +417,113 @@ pub unsafe extern "C" fn idm_triangle_voronoi(
     })
 }
 
+/// The extra nodes of second-order (6-node) triangles, Triangle's `-o2`: one new vertex at the
+/// midpoint of every mesh edge, numbered after the mesh's vertices (the first new one is
+/// number `num_vertices`) in order of first use. `xy` gets 2 coordinates and `markers` 1 marker
+/// per new vertex (the segment's marker for the midpoint of a subsegment, else 0); `nodes` gets
+/// 3 vertex numbers per triangle: the midpoints opposite its corners 0, 1 and 2 (Triangle's
+/// nodes 4, 5, 6). `*num_new` always gets the number of new vertices; the arrays (each
+/// optional) are filled when not NULL, which needs `capacity_vertices >= *num_new` and
+/// `capacity_triangles >=` the number of triangles.
+///
+/// # Safety
+/// `m` a live handle; `xy` NULL or valid for `2*capacity_vertices` writes, `markers` NULL or
+/// valid for `capacity_vertices`, `nodes` NULL or valid for `3*capacity_triangles`; `num_new`
+/// valid for a write.
+#[no_mangle]
+pub unsafe extern "C" fn idm_triangle_second_order(
+    m: *const idm_mesher2d,
+    xy: *mut f64,
+    markers: *mut i32,
+    capacity_vertices: usize,
+    nodes: *mut u32,
+    capacity_triangles: usize,
+    num_new: *mut usize,
+) -> idm_status {
+    guard(|| {
+        check_out(num_new, "num_new")?;
+        // SAFETY: the caller's contract, forwarded; the lent array is read before any other
+        // call on the handle.
+        let mesh = unsafe { connectivity_of(m) }?;
+        let (mut vx, mut nv) = (std::ptr::null(), 0usize);
+        let st = unsafe { idm_mesher2d_vertices(m, &mut vx, &mut nv) };
+        if st != idm_status::IDM_OK {
+            return Err(Failure::new(st, "cannot read the vertices"));
+        }
+        let vx: &[[f64; 2]] = unsafe { input_slice(vx.cast(), nv, "vertices") }?;
+        let key = |a: u32, b: u32| (a.min(b), a.max(b));
+        let seg_marker: std::collections::HashMap<(u32, u32), i32> = mesh
+            .segments
+            .iter()
+            .zip(&mesh.segment_markers)
+            .map(|(s, &k)| (key(s[0], s[1]), k))
+            .collect();
+        let nt = mesh.triangles.len();
+        let mut mid = vec![[0u32; 3]; nt];
+        let mut new: Vec<([f64; 2], i32)> = Vec::new();
+        for t in 0..nt {
+            let tri = mesh.triangles[t];
+            for i in 0..3 {
+                let n = mesh.neighbors[t][i];
+                // The neighbour across a shared edge, when numbered lower, made its midpoint.
+                let shared = (n != NONE && (n as usize) < t)
+                    .then(|| {
+                        mesh.neighbors[n as usize]
+                            .iter()
+                            .position(|&x| x as usize == t)
+                    })
+                    .flatten();
+                mid[t][i] = match shared {
+                    Some(j) => mid[n as usize][j],
+                    None => {
+                        let (a, b) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+                        let (pa, pb) = (vx[a as usize], vx[b as usize]);
+                        let id = nv + new.len();
+                        if id >= NONE as usize {
+                            return Err(Failure::invalid("too many vertices for uint32_t"));
+                        }
+                        let mark = seg_marker.get(&key(a, b)).copied().unwrap_or(0);
+                        new.push(([0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])], mark));
+                        id as u32
+                    }
+                };
+            }
+        }
+        if (!xy.is_null() || !markers.is_null()) && capacity_vertices < new.len() {
+            return Err(Failure::invalid(format!(
+                "capacity_vertices {capacity_vertices} is less than {}",
+                new.len()
+            )));
+        }
+        if !nodes.is_null() && capacity_triangles < nt {
+            return Err(Failure::invalid(format!(
+                "capacity_triangles {capacity_triangles} is less than {nt}"
+            )));
+        }
+        // SAFETY: lengths checked against the capacities above; the caller's contract.
+        unsafe {
+            for (k, (p, mark)) in new.iter().enumerate() {
+                if !xy.is_null() {
+                    xy.add(2 * k).write(p[0]);
+                    xy.add(2 * k + 1).write(p[1]);
+                }
+                if !markers.is_null() {
+                    markers.add(k).write(*mark);
+                }
+            }
+            if !nodes.is_null() {
+                for (t, m3) in mid.iter().enumerate() {
+                    for (i, &v) in m3.iter().enumerate() {
+                        nodes.add(3 * t + i).write(v);
+                    }
+                }
+            }
+            num_new.write(new.len());
+        }
+        Ok(())
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -443,6 +553,7 @@ mod tests {
         assert_eq!(s.options.region_max_area, 0, "regional bounds need p");
         assert_eq!(s.region_attributes, 0, "regional attributes need p");
         assert_eq!(parse("pv").unwrap().voronoi, 1);
+        assert_eq!(parse("po2").unwrap().second_order, 1);
         let s = parse("-paAS10iFlsXgI").unwrap();
         assert_eq!((s.options.region_max_area, s.region_attributes), (1, 1));
         assert_eq!(s.options.max_steiner, 10);
@@ -450,13 +561,7 @@ mod tests {
 
     #[test]
     fn refuses_by_name() {
-        for (sw, name) in [
-            ("pr", "-r"),
-            ("pj", "-j"),
-            ("po2", "-o2"),
-            ("pYY", "-YY"),
-            ("w", "-w"),
-        ] {
+        for (sw, name) in [("pr", "-r"), ("pj", "-j"), ("pYY", "-YY"), ("w", "-w")] {
             let (st, msg) = parse(sw).unwrap_err();
             assert_eq!(st, IDM_ERR_UNSUPPORTED, "{sw}");
             assert!(msg.contains(name), "{sw}: {msg}");
@@ -567,6 +672,38 @@ mod tests {
                     })
                     .collect();
                 assert!((d[0] - d[1]).abs() < 1e-12 && (d[0] - d[2]).abs() < 1e-12);
+            }
+            // -o2: 4 hull midpoints + 4 spoke midpoints; hull ones carry the hull marker 1.
+            let mut nn = 0usize;
+            let nul32 = std::ptr::null_mut::<u32>();
+            assert_eq!(
+                idm_triangle_second_order(m, nul, nul.cast(), 0, nul32, 0, &mut nn),
+                IDM_OK
+            );
+            assert_eq!(nn, 8, "one midpoint per edge");
+            let mut mxy = vec![0.0; 2 * nn];
+            let mut mmk = vec![-1; nn];
+            let mut nodes = vec![0u32; 3 * nt];
+            let (xp, kp, np3) = (mxy.as_mut_ptr(), mmk.as_mut_ptr(), nodes.as_mut_ptr());
+            assert_eq!(
+                idm_triangle_second_order(m, xp, kp, nn, np3, nt - 1, &mut nn),
+                IDM_ERR_INVALID_ARGUMENT
+            );
+            assert_eq!(
+                idm_triangle_second_order(m, xp, kp, nn, np3, nt, &mut nn),
+                IDM_OK
+            );
+            for t in 0..nt {
+                for i in 0..3 {
+                    let (a, b) = (
+                        tri[3 * t + (i + 1) % 3] as usize,
+                        tri[3 * t + (i + 2) % 3] as usize,
+                    );
+                    let k = nodes[3 * t + i] as usize - nv;
+                    assert_eq!(mxy[2 * k], 0.5 * (vx[2 * a] + vx[2 * b]));
+                    assert_eq!(mxy[2 * k + 1], 0.5 * (vx[2 * a + 1] + vx[2 * b + 1]));
+                    assert_eq!(mmk[k], i32::from(a < 4 && b < 4), "hull midpoints marker 1");
+                }
             }
             let mut ray_norms = Vec::new();
             for k in 0..ne {

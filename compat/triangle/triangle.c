@@ -179,20 +179,46 @@ static idm_status read_mesh(const idm_mesher2d *m, const idm_triangle_switches *
   const double *xy = NULL, *attr = NULL;
   const int32_t *vm = NULL;
   const uint32_t *tri = NULL, *nbr = NULL;
-  size_t nv = 0, nt = 0, na = 0, i;
+  size_t nv = 0, nt = 0, na = 0, nn = 0, i;
   idm_status st;
   if ((st = idm_mesher2d_vertices(m, &xy, &nv)) != IDM_OK) return st;
   if ((st = idm_mesher2d_vertex_markers(m, &vm, &nv)) != IDM_OK) return st;
   if ((st = idm_mesher2d_triangles(m, &tri, &nt)) != IDM_OK) return st;
-  if (nv > INT32_MAX / 2 || nt > INT32_MAX / 3)
+  if (sw->second_order) {
+    st = idm_triangle_second_order(m, NULL, NULL, 0, NULL, 0, &nn);
+    if (st != IDM_OK) return st;
+  }
+  if (nv + nn > INT32_MAX / 2 || nt > INT32_MAX / 6)
     return fail(IDM_ERR_INVALID_ARGUMENT, "the mesh is too large for int indices");
-  r->num_points = (int)nv;
+  r->num_points = (int)(nv + nn);
   r->num_triangles = (int)nt;
-  r->points = (double *)alloc(2 * nv, sizeof *r->points);
-  r->point_markers = (int *)alloc(nv, sizeof *r->point_markers);
-  r->triangles = renumbered(tri, 3 * nt, first);
-  if (r->points == NULL || r->point_markers == NULL || r->triangles == NULL)
+  r->points = (double *)alloc(2 * (nv + nn), sizeof *r->points);
+  r->point_markers = (int *)alloc(nv + nn, sizeof *r->point_markers);
+  if (r->points == NULL || r->point_markers == NULL)
     return fail(IDM_ERR_INVALID_ARGUMENT, "out of memory copying the mesh");
+  if (sw->second_order) {
+    /* Triangle's 6-node triangles: the corners, then the midpoints opposite them. */
+    uint32_t *mid = (uint32_t *)alloc(3 * nt, sizeof *mid);
+    r->triangles = (int *)alloc(6 * nt, sizeof *r->triangles);
+    if (mid == NULL || r->triangles == NULL) {
+      free(mid);
+      return fail(IDM_ERR_INVALID_ARGUMENT, "out of memory for second-order nodes");
+    }
+    st = idm_triangle_second_order(m, r->points + 2 * nv, (int32_t *)(r->point_markers + nv),
+                                   nn, mid, nt, &nn);
+    for (i = 0; st == IDM_OK && i < nt; i++) {
+      size_t k;
+      for (k = 0; k < 3; k++) {
+        r->triangles[6 * i + k] = (int)tri[3 * i + k] + first;
+        r->triangles[6 * i + 3 + k] = (int)mid[3 * i + k] + first;
+      }
+    }
+    free(mid);
+    if (st != IDM_OK) return st;
+  } else {
+    r->triangles = renumbered(tri, 3 * nt, first);
+    if (r->triangles == NULL) return fail(IDM_ERR_INVALID_ARGUMENT, "out of memory copying the mesh");
+  }
   if (nv > 0) memcpy(r->points, xy, 2 * nv * sizeof *xy);
   for (i = 0; i < nv; i++) r->point_markers[i] = vm[i];
   if (sw->region_attributes) {
@@ -259,10 +285,10 @@ static void commit(const idm_triangle_switches *sw, struct triangulateio *in,
     if (!sw->no_boundary_markers) GIVE(pointmarkerlist, r->point_markers, r->num_points);
   }
   out->numberoftriangles = r->num_triangles;
-  out->numberofcorners = 3;
+  out->numberofcorners = sw->second_order ? 6 : 3;
   out->numberoftriangleattributes = sw->region_attributes ? 1 : 0;
   if (!sw->no_ele) {
-    GIVE(trianglelist, r->triangles, 3 * r->num_triangles);
+    GIVE(trianglelist, r->triangles, out->numberofcorners * r->num_triangles);
     if (sw->region_attributes)
       GIVE(triangleattributelist, r->triangle_attributes, r->num_triangles);
   }

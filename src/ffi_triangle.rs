@@ -211,6 +211,23 @@ unsafe fn connectivity_of(m: *const idm_mesher2d) -> Result<TriMesh, Failure> {
     })
 }
 
+/// The connectivity (as [`connectivity_of`]) and the vertices, borrowed from the handle.
+///
+/// # Safety
+/// `m` must be NULL or a live handle, not changed while the vertices are borrowed.
+unsafe fn geometry_of<'a>(m: *const idm_mesher2d) -> Result<(TriMesh, &'a [[f64; 2]]), Failure> {
+    // SAFETY (all blocks here): the caller's contract, forwarded; the getter lends an array of
+    // the stated length.
+    let mesh = unsafe { connectivity_of(m) }?;
+    let (mut xy, mut nv) = (std::ptr::null(), 0usize);
+    let st = unsafe { idm_mesher2d_vertices(m, &mut xy, &mut nv) };
+    if st != idm_status::IDM_OK {
+        return Err(Failure::new(st, "cannot read the vertices"));
+    }
+    let xy: &[[f64; 2]] = unsafe { input_slice(xy.cast(), nv, "vertices") }?;
+    Ok((mesh, xy))
+}
+
 /// Vertex pairs with a marker each (edges, segments).
 type Pairs = Vec<([u32; 2], i32)>;
 
@@ -337,15 +354,8 @@ pub unsafe extern "C" fn idm_triangle_voronoi(
     guard(|| {
         check_out(num_points, "num_points")?;
         check_out(num_edges, "num_edges")?;
-        // SAFETY: the caller's contract, forwarded; the lent array is read before any other
-        // call on the handle.
-        let mesh = unsafe { connectivity_of(m) }?;
-        let (mut xy, mut nv) = (std::ptr::null(), 0usize);
-        let st = unsafe { idm_mesher2d_vertices(m, &mut xy, &mut nv) };
-        if st != idm_status::IDM_OK {
-            return Err(Failure::new(st, "cannot read the vertices"));
-        }
-        let xy: &[[f64; 2]] = unsafe { input_slice(xy.cast(), nv, "vertices") }?;
+        // SAFETY: the caller's contract, forwarded.
+        let (mesh, xy) = unsafe { geometry_of(m) }?;
         let mut centres = Vec::with_capacity(mesh.triangles.len());
         for (t, tri) in mesh.triangles.iter().enumerate() {
             let [a, b, c] = tri.map(|v| xy[v as usize]);
@@ -442,15 +452,9 @@ pub unsafe extern "C" fn idm_triangle_second_order(
 ) -> idm_status {
     guard(|| {
         check_out(num_new, "num_new")?;
-        // SAFETY: the caller's contract, forwarded; the lent array is read before any other
-        // call on the handle.
-        let mesh = unsafe { connectivity_of(m) }?;
-        let (mut vx, mut nv) = (std::ptr::null(), 0usize);
-        let st = unsafe { idm_mesher2d_vertices(m, &mut vx, &mut nv) };
-        if st != idm_status::IDM_OK {
-            return Err(Failure::new(st, "cannot read the vertices"));
-        }
-        let vx: &[[f64; 2]] = unsafe { input_slice(vx.cast(), nv, "vertices") }?;
+        // SAFETY: the caller's contract, forwarded.
+        let (mesh, vx) = unsafe { geometry_of(m) }?;
+        let nv = vx.len();
         let key = |a: u32, b: u32| (a.min(b), a.max(b));
         let seg_marker: std::collections::HashMap<(u32, u32), i32> = mesh
             .segments

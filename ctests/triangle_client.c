@@ -156,7 +156,7 @@ static void bad_inputs(void) {
   fill_domain(&in, 1, segments);
   expect_failure("prQ", &in, "-r");    /* refused by name */
   expect_failure("pkQ", &in, "-k");    /* unknown to Triangle */
-  expect_failure("pjQ", &in, "-j");
+  expect_failure("pYYQ", &in, "-YY");
   expect_failure("pq30a-1Q", &in, "'-'");
   segments[5] = 99;                    /* a segment to a missing point */
   expect_failure("pQ", &in, "segment");
@@ -245,6 +245,36 @@ static void second_order(struct triangulateio *in) {
   free_out(&out);
 }
 
+/* -j: a point outside the square's segments is in no triangle: kept at its index without -j,
+ * left out with -j. */
+static void jettison(void) {
+  struct triangulateio in, out;
+  REAL pts[] = {0, 0, 1, 0, 5, 5, 1, 1, 0, 1};
+  int segs[] = {0, 1, 1, 3, 3, 4, 4, 0};
+  char keep[] = "pq30zQ", drop[] = "pq30jzQ";
+  int i, with = 0;
+  clear(&in);
+  clear(&out);
+  in.numberofpoints = 5;
+  in.pointlist = pts;
+  in.numberofsegments = 4;
+  in.segmentlist = segs;
+  triangulate(keep, &in, &out, NULL);
+  with = out.numberofpoints;
+  CHECK(with >= 5 && out.pointlist[4] == 5 && out.pointlist[5] == 5, "without -j: %s",
+        idm_last_error());
+  free_out(&out);
+  triangulate(drop, &in, &out, NULL);
+  CHECK(out.numberofpoints == with - 1, "-j: %d points, %d without -j", out.numberofpoints, with);
+  for (i = 0; i < out.numberofpoints; i++)
+    CHECK(out.pointlist[2 * i] <= 1 && out.pointlist[2 * i + 1] <= 1, "-j kept point %d", i);
+  for (i = 0; i < 3 * out.numberoftriangles; i++)
+    CHECK(out.trianglelist[i] >= 0 && out.trianglelist[i] < out.numberofpoints, "-j: corner %d", i);
+  for (i = 0; i < 2 * out.numberofsegments; i++)
+    CHECK(out.segmentlist[i] >= 0 && out.segmentlist[i] < out.numberofpoints, "-j: segment end");
+  free_out(&out);
+}
+
 /* A point set (no -p): the convex hull is meshed; with -c its edges are output as segments
  * with marker 1, and -B leaves the markers out; -N -E leave vertices and triangles out. */
 static void point_set(void) {
@@ -281,6 +311,7 @@ int main(void) {
   bad_inputs(); /* errors after successes, and successes after errors */
   mesh_domain("pq25a0.05AenzQiFlsX", 0);
   point_set();
+  jettison();
   if (failures) fprintf(stderr, "%d checks failed\n", failures);
   return failures ? 1 : 0;
 }

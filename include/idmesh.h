@@ -343,6 +343,10 @@ typedef struct idm_triangle_switches {
    * `o2`: second-order (6-node) triangles (`idm_triangle_second_order`).
    */
   int32_t second_order;
+  /**
+   * `j`: leave the vertices that are in no triangle out of the output, renumbering the rest.
+   */
+  int32_t jettison;
 } idm_triangle_switches;
 
 #ifdef __cplusplus
@@ -813,7 +817,7 @@ enum idm_status idm_mesher3d_validate(const struct idm_mesher3d *m);
 /**
  * Parses a switch string as Triangle's `triangulate()` takes it (`"pq30a0.1zQ"`; a leading
  * `-` is tolerated) into `*out`. A switch Triangle does not know is `IDM_ERR_INVALID_ARGUMENT`;
- * one the C ABI cannot honour (`r j YY w W`) is `IDM_ERR_UNSUPPORTED`; the message names
+ * one the C ABI cannot honour (`r YY w W`) is `IDM_ERR_UNSUPPORTED`; the message names
  * it. Never ignores a switch.
  *
  * # Safety

@@ -25,8 +25,8 @@ use crate::switches::triangle::{output_segments, parse_library, Switches};
 /// none of which changes what the output means, so they are accepted and do nothing; `g` writes
 /// a file only from Triangle's command line (its library writes nothing), likewise `I`.
 const C_HONOURED: &[&str] = &[
-    "p", "q", "a", "u", "A", "c", "D", "e", "v", "n", "g", "B", "P", "N", "E", "I", "O", "X", "z",
-    "o2", "Y", "S", "i", "F", "l", "s", "C", "Q", "V",
+    "p", "q", "a", "u", "A", "c", "D", "j", "e", "v", "n", "g", "B", "P", "N", "E", "I", "O", "X",
+    "z", "o2", "Y", "S", "i", "F", "l", "s", "C", "Q", "V",
 ];
 
 /// Triangle's switches, parsed (`idm_triangle_parse_switches`). Booleans are `int32_t`: 0 or 1.
@@ -72,6 +72,8 @@ pub struct idm_triangle_switches {
     pub voronoi: i32,
     /// `o2`: second-order (6-node) triangles (`idm_triangle_second_order`).
     pub second_order: i32,
+    /// `j`: leave the vertices that are in no triangle out of the output, renumbering the rest.
+    pub jettison: i32,
 }
 
 impl idm_triangle_switches {
@@ -110,13 +112,14 @@ impl idm_triangle_switches {
             verbose: b(s.verbose),
             voronoi: b(s.voronoi),
             second_order: b(s.second_order),
+            jettison: b(s.jettison),
         }
     }
 }
 
 /// Parses a switch string as Triangle's `triangulate()` takes it (`"pq30a0.1zQ"`; a leading
 /// `-` is tolerated) into `*out`. A switch Triangle does not know is `IDM_ERR_INVALID_ARGUMENT`;
-/// one the C ABI cannot honour (`r j YY w W`) is `IDM_ERR_UNSUPPORTED`; the message names
+/// one the C ABI cannot honour (`r YY w W`) is `IDM_ERR_UNSUPPORTED`; the message names
 /// it. Never ignores a switch.
 ///
 /// # Safety
@@ -558,6 +561,7 @@ mod tests {
         assert_eq!(s.region_attributes, 0, "regional attributes need p");
         assert_eq!(parse("pv").unwrap().voronoi, 1);
         assert_eq!(parse("po2").unwrap().second_order, 1);
+        assert_eq!(parse("pj").unwrap().jettison, 1);
         let s = parse("-paAS10iFlsXgI").unwrap();
         assert_eq!((s.options.region_max_area, s.region_attributes), (1, 1));
         assert_eq!(s.options.max_steiner, 10);
@@ -565,7 +569,7 @@ mod tests {
 
     #[test]
     fn refuses_by_name() {
-        for (sw, name) in [("pr", "-r"), ("pj", "-j"), ("pYY", "-YY"), ("w", "-w")] {
+        for (sw, name) in [("pr", "-r"), ("pYY", "-YY"), ("w", "-w")] {
             let (st, msg) = parse(sw).unwrap_err();
             assert_eq!(st, IDM_ERR_UNSUPPORTED, "{sw}");
             assert!(msg.contains(name), "{sw}: {msg}");

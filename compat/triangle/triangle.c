@@ -263,6 +263,33 @@ static idm_status read_mesh(const idm_mesher2d *m, const idm_triangle_switches *
   return IDM_OK;
 }
 
+/* -j: drops the vertices no triangle uses (inside holes, outside the domain) and renumbers the
+ * rest in order; triangles, segments and edges refer only to used vertices. */
+static idm_status jettison(struct result *r, int corners, int first) {
+  int *map = (int *)alloc((size_t)r->num_points, sizeof *map);
+  int i, kept = 0;
+  if (map == NULL) return fail(IDM_ERR_INVALID_ARGUMENT, "out of memory for -j");
+  for (i = 0; i < r->num_points; i++) map[i] = -1;
+  for (i = 0; i < corners * r->num_triangles; i++) map[r->triangles[i] - first] = 0;
+  for (i = 0; i < r->num_points; i++) {
+    if (map[i] < 0) continue;
+    map[i] = kept;
+    r->points[2 * kept] = r->points[2 * i];
+    r->points[2 * kept + 1] = r->points[2 * i + 1];
+    r->point_markers[kept] = r->point_markers[i];
+    kept++;
+  }
+  for (i = 0; i < corners * r->num_triangles; i++)
+    r->triangles[i] = map[r->triangles[i] - first] + first;
+  for (i = 0; r->segments != NULL && i < 2 * r->num_segments; i++)
+    r->segments[i] = map[r->segments[i] - first] + first;
+  for (i = 0; r->edges != NULL && i < 2 * r->num_edges; i++)
+    r->edges[i] = map[r->edges[i] - first] + first;
+  r->num_points = kept;
+  free(map);
+  return IDM_OK;
+}
+
 /* Hands an array to `out`: into the caller's array when it set one (Triangle writes through
  * such pointers), else the malloc'ed array itself, which `out` then owns. */
 #define GIVE_TO(io, field, mine, n)                                             \
@@ -349,6 +376,7 @@ static idm_status run(char *triswitches, struct triangulateio *in, struct triang
   }
   if (st == IDM_OK && sw->check) st = idm_mesher2d_validate(m);
   if (st == IDM_OK) st = read_mesh(m, sw, first, &r);
+  if (st == IDM_OK && sw->jettison) st = jettison(&r, sw->second_order ? 6 : 3, first);
   if (st == IDM_OK) {
     commit(sw, in, out, vorout, &r);
     if (sw->verbose && !sw->quiet)

@@ -9,7 +9,7 @@
  *   - Errors never exit: where Triangle prints a message and calls exit(1), triangulate()
  *     prints the message on stderr (unless -Q), leaves every output empty (counts 0, no array
  *     allocated) and returns; idm_last_error() (declared in idmesh.h) gives the message.
- *   - Switches idmesh cannot honour (r j YY) are refused by name as above, never ignored.
+ *   - Switches idmesh cannot honour (r YY) are refused by name as above, never ignored.
  *     i F l s X (algorithm and arithmetic choices of Triangle) are accepted and do nothing;
  *     g and I, which only affect Triangle's files, are accepted and do nothing (as in
  *     Triangle's library).

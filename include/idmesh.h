@@ -411,6 +411,93 @@ typedef struct idm_stats3d {
   int32_t complete;
 } idm_stats3d;
 
+/**
+ * Triangle's switches, parsed (`idm_triangle_parse_switches`). Booleans are `int32_t`: 0 or 1.
+ */
+typedef struct idm_triangle_switches {
+  /**
+   * The mesher options they ask for (`q a Y S c`; `a` without a number and `A` only with
+   * `p`, as in Triangle), ready for `idm_mesher2d_set_options`.
+   */
+  struct idm_options2d options;
+  /**
+   * `p`: the input is a PSLG (segments, holes and regions are read).
+   */
+  int32_t poly;
+  /**
+   * `u`: call the user's sizing test.
+   */
+  int32_t user_test;
+  /**
+   * `A`: regional attributes are output (only with `p`).
+   */
+  int32_t region_attributes;
+  /**
+   * `c`: the convex hull is meshed.
+   */
+  int32_t convex_hull;
+  /**
+   * `e`: output the edges.
+   */
+  int32_t edges;
+  /**
+   * `n`: output the neighbours.
+   */
+  int32_t neighbors;
+  /**
+   * `B`: no boundary markers in the output.
+   */
+  int32_t no_boundary_markers;
+  /**
+   * `P`: no segments in the output.
+   */
+  int32_t no_poly;
+  /**
+   * `N`: no vertices in the output.
+   */
+  int32_t no_node;
+  /**
+   * `E`: no triangles in the output.
+   */
+  int32_t no_ele;
+  /**
+   * `O`: the holes are ignored.
+   */
+  int32_t ignore_holes;
+  /**
+   * `z`: items are numbered from 0 (else from 1).
+   */
+  int32_t zero_based;
+  /**
+   * `Y`: no Steiner points on boundary segments.
+   */
+  int32_t no_boundary_steiner;
+  /**
+   * `C`: check the mesh after meshing (`idm_mesher2d_validate`).
+   */
+  int32_t check;
+  /**
+   * `Q`: print nothing but errors.
+   */
+  int32_t quiet;
+  /**
+   * `V`: print statistics.
+   */
+  int32_t verbose;
+  /**
+   * `v`: output the Voronoi diagram (`idm_triangle_voronoi`).
+   */
+  int32_t voronoi;
+  /**
+   * `o2`: second-order (6-node) triangles (`idm_triangle_second_order`).
+   */
+  int32_t second_order;
+  /**
+   * `j`: leave the vertices that are in no triangle out of the output, renumbering the rest.
+   */
+  int32_t jettison;
+} idm_triangle_switches;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -918,6 +1005,104 @@ enum idm_status idm_mesher3d_stats(const struct idm_mesher3d *m, struct idm_stat
  * `m` must be a live handle.
  */
 enum idm_status idm_mesher3d_validate(const struct idm_mesher3d *m);
+
+/**
+ * Parses a switch string as Triangle's `triangulate()` takes it (`"pq30a0.1zQ"`; a leading
+ * `-` is tolerated) into `*out`. A switch Triangle does not know is `IDM_ERR_INVALID_ARGUMENT`;
+ * one the C ABI cannot honour (`r YY w W`) is `IDM_ERR_UNSUPPORTED`; the message names
+ * it. Never ignores a switch.
+ *
+ * # Safety
+ * `text` must be NULL (an error) or a NUL-terminated string; `out` NULL (an error) or valid
+ * for writing an `idm_triangle_switches`.
+ */
+enum idm_status idm_triangle_parse_switches(const char *text, struct idm_triangle_switches *out);
+
+/**
+ * Records `message` (NULL: a generic one) as this thread's `idm_last_error()` and returns
+ * `status` (`IDM_OK` is turned into `IDM_ERR_INVALID_ARGUMENT`). For shims over the C ABI
+ * (such as `compat/triangle`) that find an error before calling the library.
+ *
+ * # Safety
+ * `message` must be NULL or a NUL-terminated string.
+ */
+enum idm_status idm_triangle_fail(enum idm_status status, const char *message);
+
+/**
+ * Every edge of the mesh once (Triangle's `-e` output), as 0-based vertex pairs in `ab`, with
+ * its marker in `markers`: the segment's marker for edges on a segment, else 0. Call with
+ * `ab` and `markers` NULL to learn `*count`, then with arrays of `capacity >= *count`.
+ *
+ * # Safety
+ * `m` a live handle; `ab` NULL or valid for `2*capacity` writes, `markers` NULL or valid for
+ * `capacity`, `count` valid for a write.
+ */
+enum idm_status idm_triangle_edges(const struct idm_mesher2d *m,
+                                   uint32_t *ab,
+                                   int32_t *markers,
+                                   size_t capacity,
+                                   size_t *count);
+
+/**
+ * The segments as Triangle outputs them (with `-p` or `-c`): the subsegments, then every
+ * boundary edge that is no subsegment (the convex hull of a point set) with marker 1. Same
+ * calling convention as `idm_triangle_edges`.
+ *
+ * # Safety
+ * As `idm_triangle_edges`.
+ */
+enum idm_status idm_triangle_segments(const struct idm_mesher2d *m,
+                                      uint32_t *ab,
+                                      int32_t *markers,
+                                      size_t capacity,
+                                      size_t *count);
+
+/**
+ * The Voronoi diagram of the mesh as Triangle outputs it with `-v` (the dual of the
+ * triangulation, which is Delaunay): Voronoi vertex `t` is the circumcentre of triangle `t`
+ * (`points`, 2 per triangle); one Voronoi edge per mesh edge, joining the circumcentres of its
+ * two triangles (`edges`, 2 per edge, 0-based), or, for a boundary edge, a ray from its one
+ * triangle's circumcentre: second index -1 and `norms` holding the ray direction, the edge's
+ * outward normal (dy, -dx) for the edge taken counter-clockwise; `norms` is (0, 0) for finite
+ * edges. `*num_points` and `*num_edges` always get the sizes; the arrays (each optional) are
+ * filled when not NULL, which needs `capacity_points >= *num_points` and
+ * `capacity_edges >= *num_edges`.
+ *
+ * # Safety
+ * `m` a live handle; `points` NULL or valid for `2*capacity_points` writes, `edges` and
+ * `norms` NULL or valid for `2*capacity_edges`; `num_points`, `num_edges` valid for a write.
+ */
+enum idm_status idm_triangle_voronoi(const struct idm_mesher2d *m,
+                                     double *points,
+                                     int32_t *edges,
+                                     double *norms,
+                                     size_t capacity_points,
+                                     size_t capacity_edges,
+                                     size_t *num_points,
+                                     size_t *num_edges);
+
+/**
+ * The extra nodes of second-order (6-node) triangles, Triangle's `-o2`: one new vertex at the
+ * midpoint of every mesh edge, numbered after the mesh's vertices (the first new one is
+ * number `num_vertices`) in order of first use. `xy` gets 2 coordinates and `markers` 1 marker
+ * per new vertex (the segment's marker for the midpoint of a subsegment, else 0); `nodes` gets
+ * 3 vertex numbers per triangle: the midpoints opposite its corners 0, 1 and 2 (Triangle's
+ * nodes 4, 5, 6). `*num_new` always gets the number of new vertices; the arrays (each
+ * optional) are filled when not NULL, which needs `capacity_vertices >= *num_new` and
+ * `capacity_triangles >=` the number of triangles.
+ *
+ * # Safety
+ * `m` a live handle; `xy` NULL or valid for `2*capacity_vertices` writes, `markers` NULL or
+ * valid for `capacity_vertices`, `nodes` NULL or valid for `3*capacity_triangles`; `num_new`
+ * valid for a write.
+ */
+enum idm_status idm_triangle_second_order(const struct idm_mesher2d *m,
+                                          double *xy,
+                                          int32_t *markers,
+                                          size_t capacity_vertices,
+                                          uint32_t *nodes,
+                                          size_t capacity_triangles,
+                                          size_t *num_new);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 need_apt=()
-for pkg in cmake g++ libcgal-dev libgmp-dev libmpfr-dev libtet1.5-dev tetgen python3-pip; do
+for pkg in cmake g++ pkg-config libcgal-dev libgmp-dev libmpfr-dev libtet1.5-dev tetgen python3-pip; do
   dpkg -s "$pkg" >/dev/null 2>&1 || need_apt+=("$pkg")
 done
 if [ ${#need_apt[@]} -gt 0 ]; then
@@ -15,9 +15,10 @@ if [ ${#need_apt[@]} -gt 0 ]; then
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${need_apt[@]}" >/dev/null
 fi
-if ! python3 -c 'import numpy, scipy' >/dev/null 2>&1; then
-  echo "== installing Python packages: numpy scipy"
-  python3 -m pip install -q numpy scipy || python3 -m pip install -q --break-system-packages numpy scipy
+if ! python3 -c 'import numpy, scipy, triangle' >/dev/null 2>&1; then
+  echo "== installing Python packages: numpy scipy triangle"
+  python3 -m pip install -q numpy scipy triangle ||
+    python3 -m pip install -q --break-system-packages numpy scipy triangle
 fi
 # meshio reads the exchange formats back in tests/exchange.rs.
 if ! python3 -c 'import meshio' >/dev/null 2>&1; then

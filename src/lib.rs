@@ -37,6 +37,7 @@ mod lp;
 pub mod mesh2d;
 pub mod mesh3d;
 pub mod predicates;
+pub mod switches;
 
 pub use error::{Error, InputError};
 

@@ -146,6 +146,11 @@ fn header_declares_the_whole_api() {
         "enum idm_status idm_mesher3d_edges(",
         "enum idm_status idm_mesher3d_stats(",
         "enum idm_status idm_mesher3d_validate(const struct idm_mesher3d *m);",
+        "typedef struct idm_triangle_switches",
+        "enum idm_status idm_triangle_parse_switches(",
+        "enum idm_status idm_triangle_fail(",
+        "enum idm_status idm_triangle_edges(",
+        "enum idm_status idm_triangle_segments(",
     ] {
         assert!(h.contains(name), "generated header lacks `{name}`:\n{h}");
     }

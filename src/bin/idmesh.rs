@@ -9,8 +9,6 @@
 mod names;
 #[path = "idmesh/show_cmd.rs"]
 mod show_cmd;
-#[path = "idmesh/switches.rs"]
-mod switches;
 #[path = "idmesh/tetgen_cmd.rs"]
 mod tetgen_cmd;
 #[path = "idmesh/tetgen_switches.rs"]

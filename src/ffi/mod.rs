@@ -26,8 +26,10 @@ pub mod common;
 pub mod input_error;
 pub mod mesh2d;
 pub mod mesh3d;
+pub mod triangle;
 
 pub use common::*;
 pub use input_error::*;
 pub use mesh2d::*;
 pub use mesh3d::*;
+pub use triangle::*;

@@ -8,10 +8,15 @@ use idmesh::io::triangle::{
     read_node, read_poly, write_edge, write_ele, write_neigh, write_node, write_poly,
     write_poly_segments, TriangleInput,
 };
-use idmesh::{triangulate, Error, InputError, Options, TriMesh, NONE};
+use idmesh::switches::triangle::{output_segments, parse_command_line, Parsed, Switches};
+use idmesh::{triangulate, Error, InputError, TriMesh};
 
 use crate::names::{self, Files};
-use crate::switches::{self, Parsed, Switches};
+
+/// The switches `idmesh triangle` honours; the others Triangle knows are refused by name.
+const HONOURED: &[&str] = &[
+    "p", "q", "a", "A", "c", "D", "Y", "S", "z", "e", "n", "N", "E", "P", "Q", "V",
+];
 
 /// The help text of `idmesh triangle --help`.
 pub const HELP: &str = "\
@@ -45,12 +50,16 @@ Numbers take digits and dots only (no exponents), exactly as in Triangle.
 
 /// Runs `idmesh triangle ARGS`.
 pub fn main(args: &[String]) -> Result<(), String> {
-    match switches::parse(args)? {
+    let hint = |e: String| format!("{e}; try 'idmesh triangle --help'");
+    match parse_command_line(args).map_err(hint)? {
         Parsed::Help => {
             print!("{HELP}");
             Ok(())
         }
-        Parsed::Run { switches, file } => run(&switches, &file),
+        Parsed::Run { switches, file } => {
+            switches.refuse_except(HONOURED)?;
+            run(&switches, &file)
+        }
     }
 }
 
@@ -74,7 +83,7 @@ fn run(sw: &Switches, file: &str) -> Result<(), String> {
     let input = input.map_err(|e| e.to_string())?;
     let read_time = start.elapsed();
 
-    let opts = options(sw, files.poly);
+    let opts = sw.options(files.poly);
     let mesh_start = Instant::now();
     let mesh = triangulate(&input.pslg, &opts).map_err(|e| describe(&e, &input, &files.input))?;
     let mesh_time = mesh_start.elapsed();
@@ -95,21 +104,6 @@ fn run(sw: &Switches, file: &str) -> Result<(), String> {
         statistics(&input, &mesh, [read_time, mesh_time, write_time]);
     }
     Ok(())
-}
-
-/// Maps the switches to mesher options. Regional switches need a `.poly` file, as in Triangle.
-fn options(sw: &Switches, poly: bool) -> Options {
-    Options {
-        min_angle: sw.min_angle,
-        max_area: sw.max_area,
-        region_max_area: sw.region_area && poly,
-        region_attributes: sw.region_attributes && poly,
-        convex_hull: sw.convex_hull,
-        max_steiner: sw.max_steiner,
-        no_boundary_steiner: sw.no_boundary_steiner,
-        verbose: sw.verbose && !sw.quiet,
-        ..Options::default()
-    }
 }
 
 /// A one-line message for a mesher error, with item numbers as in the input file.
@@ -198,9 +192,10 @@ fn write_outputs(
             })?;
         } else {
             // A point set meshed with -c: Triangle writes its convex hull edges.
-            let hull = boundary_edges(mesh);
+            let (hull, markers): (Vec<[u32; 2]>, Vec<i32>) =
+                output_segments(mesh).into_iter().unzip();
             write_file(sw, &files.output("poly"), |f| {
-                write_poly_segments(f, &hull, &[], base, holes, regions)
+                write_poly_segments(f, &hull, &markers, base, holes, regions)
             })?;
         }
     }
@@ -211,19 +206,6 @@ fn write_outputs(
         write_file(sw, &files.output("neigh"), |f| write_neigh(f, mesh, base))?;
     }
     Ok(())
-}
-
-/// The edges with no triangle on one side, oriented with the mesh on their left.
-fn boundary_edges(mesh: &TriMesh) -> Vec<[u32; 2]> {
-    let mut out = Vec::new();
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        for i in 0..3 {
-            if mesh.neighbors.get(t).is_some_and(|n| n[i] == NONE) {
-                out.push([tri[(i + 1) % 3], tri[(i + 2) % 3]]);
-            }
-        }
-    }
-    out
 }
 
 fn statistics(input: &TriangleInput, mesh: &TriMesh, [read, meshing, write]: [Duration; 3]) {
@@ -299,31 +281,5 @@ mod tests {
         );
         let e = renumber(&InputError::TooFewPoints { count: 2 }, 1);
         assert_eq!(e, InputError::TooFewPoints { count: 2 });
-    }
-
-    #[test]
-    fn regional_switches_need_a_poly_file() {
-        let sw = Switches {
-            region_area: true,
-            region_attributes: true,
-            ..Switches::default()
-        };
-        let o = options(&sw, false);
-        assert!(!o.region_max_area && !o.region_attributes);
-        let o = options(&sw, true);
-        assert!(o.region_max_area && o.region_attributes);
-    }
-
-    #[test]
-    fn boundary_edges_of_two_triangles() {
-        let mesh = TriMesh {
-            vertices: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
-            triangles: vec![[0, 1, 2], [0, 2, 3]],
-            neighbors: vec![[NONE, 1, NONE], [NONE, NONE, 0]],
-            ..TriMesh::default()
-        };
-        let mut e = boundary_edges(&mesh);
-        e.sort();
-        assert_eq!(e, vec![[0, 1], [1, 2], [2, 3], [3, 0]]);
     }
 }

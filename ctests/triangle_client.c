@@ -1,0 +1,317 @@
+/*
+ * A C client of compat/triangle/triangle.h written as Triangle's users write one: REAL, VOID
+ * and ANSI_DECLARATORS defined before the include, a triangulateio zeroed by hand, outputs
+ * freed with trifree. It meshes a square with a hole, an internal segment and two regions in
+ * 1-based and 0-based numbering and prints each input and mesh (read by
+ * triangle_compare.py, which meshes the same input with Triangle itself and compares), then
+ * feeds bad input and checks that each call returns with empty outputs and a message, and that
+ * the next input still meshes. Exit status 0 when every check here passed.
+ */
+#define REAL double
+#define VOID void
+#define ANSI_DECLARATORS
+#include "triangle.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int failures = 0;
+
+#define CHECK(cond, ...)                                  \
+  do {                                                    \
+    if (!(cond)) {                                        \
+      fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__); \
+      fprintf(stderr, __VA_ARGS__);                       \
+      fprintf(stderr, "\n");                              \
+      failures++;                                         \
+    }                                                     \
+  } while (0)
+
+static void clear(struct triangulateio *io) { memset(io, 0, sizeof *io); }
+
+static void free_out(struct triangulateio *out) {
+  trifree((VOID *)out->pointlist);
+  trifree((VOID *)out->pointattributelist);
+  trifree((VOID *)out->pointmarkerlist);
+  trifree((VOID *)out->trianglelist);
+  trifree((VOID *)out->triangleattributelist);
+  trifree((VOID *)out->neighborlist);
+  trifree((VOID *)out->segmentlist);
+  trifree((VOID *)out->segmentmarkerlist);
+  trifree((VOID *)out->edgelist);
+  trifree((VOID *)out->edgemarkerlist);
+  /* holelist and regionlist are in's arrays, as in Triangle: not freed here. */
+  clear(out);
+}
+
+/* The square [0,4]^2 with a square hole [1.5,2.5]^2 and a vertical internal segment x = 1
+ * splitting it into two regions; `first` is the number of the first point. */
+static REAL points[] = {0, 0, 4, 0, 4, 4, 0, 4, 1.5, 1.5, 2.5, 1.5, 2.5, 2.5, 1.5, 2.5, 1, 0, 1, 4};
+static int point_markers[] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+static int segments0[] = {0, 8, 8, 1, 1, 2, 2, 9, 9, 3, 3, 0, 4, 5, 5, 6, 6, 7, 7, 4, 8, 9};
+static int segment_markers[] = {2, 2, 3, 4, 4, 5, 6, 6, 6, 6, 7};
+static REAL holes[] = {2, 2};
+static REAL regions[] = {0.5, 2, 1.0, 0.05, 3, 3.5, 2.0, -1};
+
+static void fill_domain(struct triangulateio *in, int first, int *segments) {
+  int i;
+  clear(in);
+  in->numberofpoints = 10;
+  in->pointlist = points;
+  in->pointmarkerlist = point_markers;
+  in->numberofsegments = 11;
+  for (i = 0; i < 22; i++) segments[i] = segments0[i] + first;
+  in->segmentlist = segments;
+  in->segmentmarkerlist = segment_markers;
+  in->numberofholes = 1;
+  in->holelist = holes;
+  in->numberofregions = 2;
+  in->regionlist = regions;
+}
+
+/* Prints the input and the output for triangle_compare.py (all indices 0-based). */
+static void dump(const char *sw, const struct triangulateio *in, const struct triangulateio *out,
+                 int first) {
+  int i;
+  printf("case %s\n", sw);
+  for (i = 0; i < in->numberofpoints; i++)
+    printf("P %.17g %.17g %d\n", in->pointlist[2 * i], in->pointlist[2 * i + 1],
+           in->pointmarkerlist[i]);
+  for (i = 0; i < in->numberofsegments; i++)
+    printf("G %d %d %d\n", in->segmentlist[2 * i] - first, in->segmentlist[2 * i + 1] - first,
+           in->segmentmarkerlist[i]);
+  for (i = 0; i < in->numberofholes; i++)
+    printf("H %.17g %.17g\n", in->holelist[2 * i], in->holelist[2 * i + 1]);
+  for (i = 0; i < in->numberofregions; i++)
+    printf("R %.17g %.17g %.17g %.17g\n", in->regionlist[4 * i], in->regionlist[4 * i + 1],
+           in->regionlist[4 * i + 2], in->regionlist[4 * i + 3]);
+  for (i = 0; i < out->numberofpoints; i++)
+    printf("p %.17g %.17g %d\n", out->pointlist[2 * i], out->pointlist[2 * i + 1],
+           out->pointmarkerlist[i]);
+  for (i = 0; i < out->numberoftriangles; i++)
+    printf("t %d %d %d %.17g\n", out->trianglelist[3 * i] - first,
+           out->trianglelist[3 * i + 1] - first, out->trianglelist[3 * i + 2] - first,
+           out->triangleattributelist[i]);
+  for (i = 0; i < out->numberoftriangles; i++) {
+    int k;
+    printf("n");
+    for (k = 0; k < 3; k++) {
+      int n = out->neighborlist[3 * i + k];
+      printf(" %d", n < 0 ? -1 : n - first);
+    }
+    printf("\n");
+  }
+  for (i = 0; i < out->numberofsegments; i++)
+    printf("s %d %d %d\n", out->segmentlist[2 * i] - first, out->segmentlist[2 * i + 1] - first,
+           out->segmentmarkerlist[i]);
+  for (i = 0; i < out->numberofedges; i++)
+    printf("e %d %d %d\n", out->edgelist[2 * i] - first, out->edgelist[2 * i + 1] - first,
+           out->edgemarkerlist[i]);
+  printf("end\n");
+}
+
+/* Meshes the domain with `sw` (Triangle's library switches) and dumps the result. */
+static void mesh_domain(const char *sw, int first) {
+  struct triangulateio in, out, vor;
+  int segments[22];
+  char switches[64];
+  fill_domain(&in, first, segments);
+  clear(&out);
+  clear(&vor);
+  snprintf(switches, sizeof switches, "%s", sw);
+  triangulate(switches, &in, &out, &vor);
+  CHECK(strcmp(idm_last_error(), "") == 0, "%s: %s", sw, idm_last_error());
+  CHECK(out.numberofpoints > 10 && out.numberoftriangles > 50, "%s: %d points %d triangles", sw,
+        out.numberofpoints, out.numberoftriangles);
+  CHECK(out.numberofcorners == 3 && out.numberoftriangleattributes == 1, "%s: corners %d", sw,
+        out.numberofcorners);
+  CHECK(out.holelist == in.holelist && out.numberofholes == 1, "%s: holelist not shared", sw);
+  CHECK(out.regionlist == in.regionlist && out.numberofregions == 2, "%s: regionlist", sw);
+  CHECK(out.pointattributelist == NULL && out.numberofpointattributes == 0, "%s: attributes", sw);
+  if (out.numberofpoints > 0) dump(sw, &in, &out, first);
+  free_out(&out);
+}
+
+/* Calls triangulate on bad input: it must return, with empty outputs and a message. */
+static void expect_failure(const char *sw, struct triangulateio *in, const char *needle) {
+  struct triangulateio out;
+  char switches[64];
+  clear(&out);
+  snprintf(switches, sizeof switches, "%s", sw);
+  triangulate(switches, in, &out, NULL);
+  CHECK(out.numberofpoints == 0 && out.numberoftriangles == 0 && out.pointlist == NULL &&
+            out.trianglelist == NULL && out.segmentlist == NULL,
+        "%s: outputs not empty after an error", sw);
+  CHECK(strstr(idm_last_error(), needle) != NULL, "%s: message '%s' lacks '%s'", sw,
+        idm_last_error(), needle);
+  free_out(&out);
+}
+
+static void bad_inputs(void) {
+  struct triangulateio in;
+  int segments[22];
+  REAL attrs[10] = {0};
+  fill_domain(&in, 1, segments);
+  expect_failure("prQ", &in, "-r");    /* refused by name */
+  expect_failure("pkQ", &in, "-k");    /* unknown to Triangle */
+  expect_failure("pYYQ", &in, "-YY");
+  expect_failure("pq30a-1Q", &in, "'-'");
+  segments[5] = 99;                    /* a segment to a missing point */
+  expect_failure("pQ", &in, "segment");
+  segments[5] = 0;                     /* below the first number (1) */
+  expect_failure("pQ", &in, "first number");
+  fill_domain(&in, 1, segments);
+  in.numberofpointattributes = 1;
+  in.pointattributelist = attrs;
+  expect_failure("pQ", &in, "attribute");
+  fill_domain(&in, 1, segments);
+  in.numberofpoints = 2;               /* too few points */
+  in.numberofsegments = 0;
+  expect_failure("pQ", &in, "point");
+  expect_failure("pQ", NULL, "NULL");
+  fill_domain(&in, 1, segments);
+  expect_failure("pvQ", &in, "vorout"); /* -v needs vorout */
+  /* -u without triunsuitable() defined in this program. */
+  fill_domain(&in, 1, segments);
+  expect_failure("puQ", &in, "triunsuitable");
+}
+
+/* -v: one Voronoi vertex per triangle, its circumcentre; one Voronoi edge per mesh edge, a
+ * ray (second end -1, direction in normlist) for each hull edge. */
+static void voronoi(struct triangulateio *in) {
+  struct triangulateio out, vor;
+  char sw[] = "vezQ";
+  int i, k, rays = 0;
+  clear(&out);
+  clear(&vor);
+  triangulate(sw, in, &out, &vor);
+  CHECK(vor.numberofpoints == out.numberoftriangles && vor.numberofpoints > 0,
+        "-v: %d Voronoi vertices for %d triangles (%s)", vor.numberofpoints,
+        out.numberoftriangles, idm_last_error());
+  CHECK(vor.numberofedges == out.numberofedges, "-v: %d Voronoi edges for %d edges",
+        vor.numberofedges, out.numberofedges);
+  for (i = 0; i < vor.numberofpoints; i++) {
+    double d[3];
+    for (k = 0; k < 3; k++) {
+      const double *p = &out.pointlist[2 * out.trianglelist[3 * i + k]];
+      d[k] = hypot(p[0] - vor.pointlist[2 * i], p[1] - vor.pointlist[2 * i + 1]);
+    }
+    CHECK(fabs(d[0] - d[1]) < 1e-12 && fabs(d[0] - d[2]) < 1e-12, "-v: circumcentre %d", i);
+  }
+  for (i = 0; i < vor.numberofedges; i++) {
+    int ray = vor.edgelist[2 * i + 1] == -1;
+    rays += ray;
+    CHECK(vor.edgelist[2 * i] >= 0 && vor.edgelist[2 * i] < vor.numberofpoints,
+          "-v: edge %d starts at %d", i, vor.edgelist[2 * i]);
+    CHECK(ray == (vor.normlist[2 * i] != 0 || vor.normlist[2 * i + 1] != 0),
+          "-v: normlist only on rays (edge %d)", i);
+  }
+  CHECK(rays == 4, "-v: %d rays, 4 hull edges", rays);
+  free_out(&out);
+  trifree(vor.pointlist);
+  trifree(vor.edgelist);
+  trifree(vor.normlist);
+}
+
+/* -o2: 6 nodes per triangle, the last three the midpoints of the edges opposite the first
+ * three, each midpoint one new vertex shared by the triangles of its edge. */
+static void second_order(struct triangulateio *in) {
+  struct triangulateio plain, out;
+  char sw1[] = "czQ", sw2[] = "co2zQ";
+  int t, k;
+  clear(&plain);
+  clear(&out);
+  triangulate(sw1, in, &plain, NULL);
+  triangulate(sw2, in, &out, NULL);
+  CHECK(out.numberofcorners == 6 && out.numberoftriangles == plain.numberoftriangles,
+        "-o2: %d corners (%s)", out.numberofcorners, idm_last_error());
+  /* Euler: edges = vertices + triangles - 1 for a disc; one midpoint per edge. */
+  CHECK(out.numberofpoints == 2 * plain.numberofpoints + plain.numberoftriangles - 1,
+        "-o2: %d points from %d vertices and %d triangles", out.numberofpoints,
+        plain.numberofpoints, plain.numberoftriangles);
+  for (t = 0; t < out.numberoftriangles; t++)
+    for (k = 0; k < 3; k++) {
+      const int *n = &out.trianglelist[6 * t];
+      const double *a = &out.pointlist[2 * n[(k + 1) % 3]], *b = &out.pointlist[2 * n[(k + 2) % 3]];
+      const double *mid = &out.pointlist[2 * n[3 + k]];
+      CHECK(n[k] == plain.trianglelist[3 * t + k], "-o2: corner %d of triangle %d", k, t);
+      CHECK(n[3 + k] >= plain.numberofpoints && mid[0] == 0.5 * (a[0] + b[0]) &&
+                mid[1] == 0.5 * (a[1] + b[1]),
+            "-o2: node %d of triangle %d is not the midpoint opposite corner %d", 3 + k, t, k);
+    }
+  free_out(&plain);
+  free_out(&out);
+}
+
+/* -j: a point outside the square's segments is in no triangle: kept at its index without -j,
+ * left out with -j. */
+static void jettison(void) {
+  struct triangulateio in, out;
+  REAL pts[] = {0, 0, 1, 0, 5, 5, 1, 1, 0, 1};
+  int segs[] = {0, 1, 1, 3, 3, 4, 4, 0};
+  char keep[] = "pq30zQ", drop[] = "pq30jzQ";
+  int i, with = 0;
+  clear(&in);
+  clear(&out);
+  in.numberofpoints = 5;
+  in.pointlist = pts;
+  in.numberofsegments = 4;
+  in.segmentlist = segs;
+  triangulate(keep, &in, &out, NULL);
+  with = out.numberofpoints;
+  CHECK(with >= 5 && out.pointlist[4] == 5 && out.pointlist[5] == 5, "without -j: %s",
+        idm_last_error());
+  free_out(&out);
+  triangulate(drop, &in, &out, NULL);
+  CHECK(out.numberofpoints == with - 1, "-j: %d points, %d without -j", out.numberofpoints, with);
+  for (i = 0; i < out.numberofpoints; i++)
+    CHECK(out.pointlist[2 * i] <= 1 && out.pointlist[2 * i + 1] <= 1, "-j kept point %d", i);
+  for (i = 0; i < 3 * out.numberoftriangles; i++)
+    CHECK(out.trianglelist[i] >= 0 && out.trianglelist[i] < out.numberofpoints, "-j: corner %d", i);
+  for (i = 0; i < 2 * out.numberofsegments; i++)
+    CHECK(out.segmentlist[i] >= 0 && out.segmentlist[i] < out.numberofpoints, "-j: segment end");
+  free_out(&out);
+}
+
+/* A point set (no -p): the convex hull is meshed; with -c its edges are output as segments
+ * with marker 1, and -B leaves the markers out; -N -E leave vertices and triangles out. */
+static void point_set(void) {
+  struct triangulateio in, out;
+  REAL pts[] = {0, 0, 2, 0, 2, 1, 0, 1, 1, 0.5, 0.3, 0.2};
+  char sw[] = "czQ";
+  char sw2[] = "cBNEzQ";
+  int i;
+  clear(&in);
+  clear(&out);
+  in.numberofpoints = 6;
+  in.pointlist = pts;
+  triangulate(sw, &in, &out, NULL);
+  CHECK(out.numberofpoints == 6 && out.numberoftriangles == 6, "point set: %d points %d tris",
+        out.numberofpoints, out.numberoftriangles);
+  CHECK(out.numberofsegments == 4, "point set -c: %d hull segments", out.numberofsegments);
+  for (i = 0; i < out.numberofsegments; i++)
+    CHECK(out.segmentmarkerlist[i] == 1 && out.segmentlist[2 * i] < 4, "hull segment %d", i);
+  CHECK(out.holelist == NULL && out.numberofholes == 0, "no holes without -p");
+  free_out(&out);
+  voronoi(&in);
+  second_order(&in);
+  triangulate(sw2, &in, &out, NULL);
+  CHECK(out.pointlist == NULL && out.trianglelist == NULL && out.segmentmarkerlist == NULL &&
+            out.segmentlist != NULL && out.numberoftriangles == 6,
+        "-B -N -E");
+  free_out(&out);
+}
+
+int main(void) {
+  bad_inputs();
+  mesh_domain("pq30a0.02AenQ", 1);
+  mesh_domain("pq30aAenzQ", 0);
+  bad_inputs(); /* errors after successes, and successes after errors */
+  mesh_domain("pq25a0.05AenzQiFlsX", 0);
+  point_set();
+  jettison();
+  if (failures) fprintf(stderr, "%d checks failed\n", failures);
+  return failures ? 1 : 0;
+}

@@ -23,6 +23,7 @@ pub mod error;
 pub mod exact;
 pub mod ffi;
 pub mod ffi3d;
+pub mod ffi_tetgen;
 pub mod geometry;
 mod hash;
 pub mod input;
@@ -32,6 +33,7 @@ mod lp;
 pub mod mesh2d;
 pub mod mesh3d;
 pub mod predicates;
+pub mod switches;
 
 pub use error::{Error, InputError};
 pub use input::{Pslg, Region};

@@ -1,10 +1,10 @@
-//! Keeps `include/idmesh.h` in sync with `src/ffi.rs` and `src/ffi3d.rs`: regenerates the
+//! Keeps `include/idmesh.h` in sync with `src/ffi.rs`, `src/ffi3d.rs` and `src/ffi_tetgen.rs`: regenerates the
 //! header with the cbindgen library and fails when the checked-in file differs.
 //! `IDMESH_UPDATE_HEADER=1 cargo test --test header` rewrites the file instead.
 
 use std::path::Path;
 
-/// The header as cbindgen generates it from `src/ffi.rs` and `src/ffi3d.rs` (in that order)
+/// The header as cbindgen generates it from `src/ffi.rs`, `src/ffi3d.rs` and `src/ffi_tetgen.rs` (in that order)
 /// with `cbindgen.toml`.
 fn generate() -> String {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -16,8 +16,9 @@ fn generate() -> String {
         .with_config(config)
         .with_src(root.join("src/ffi.rs"))
         .with_src(root.join("src/ffi3d.rs"))
+        .with_src(root.join("src/ffi_tetgen.rs"))
         .generate()
-        .unwrap_or_else(|e| panic!("cbindgen failed on src/ffi.rs + src/ffi3d.rs: {e}"));
+        .unwrap_or_else(|e| panic!("cbindgen failed on the FFI modules: {e}"));
     let mut out = Vec::new();
     bindings.write(&mut out);
     String::from_utf8(out).expect("cbindgen wrote non-UTF-8 text")
@@ -114,6 +115,15 @@ fn header_declares_the_whole_api() {
         "enum idm_status idm_mesher3d_edges(",
         "enum idm_status idm_mesher3d_stats(",
         "enum idm_status idm_mesher3d_validate(const struct idm_mesher3d *m);",
+        "typedef struct idm_tetgen_switches",
+        "typedef struct idm_plc3d idm_plc3d;",
+        "enum idm_status idm_tetgen_parse_switches(",
+        "enum idm_status idm_tetgen_resolve(",
+        "enum idm_status idm_tetgen_read(",
+        "enum idm_status idm_plc3d_view(",
+        "void idm_plc3d_free(struct idm_plc3d *p);",
+        "enum idm_status idm_mesher3d_tetgen(",
+        "enum idm_status idm_mesher3d_write_tetgen(",
     ] {
         assert!(h.contains(name), "generated header lacks `{name}`:\n{h}");
     }

@@ -947,7 +947,17 @@ enum idm_status idm_tetgen_read(const char *path, struct idm_plc3d **out);
  * # Safety
  * `p` a live `idm_plc3d`; `out` valid for writing the struct.
  */
-enum idm_status idm_plc3d_view(const struct idm_plc3d *p, struct idm_plc3d_view *out);
+enum idm_status idm_plc3d_arrays(const struct idm_plc3d *p, struct idm_plc3d_view *out);
+
+/**
+ * Records `message` as this thread's last error and returns `IDM_ERR_INVALID_INPUT`: how the
+ * TetGen layer reports what it refuses itself (input idmesh does not implement, such as point
+ * attributes), so that `idm_last_error` explains every failure. NULL records an empty message.
+ *
+ * # Safety
+ * `message` NULL or a NUL-terminated string.
+ */
+enum idm_status idm_tetgen_report(const char *message);
 
 /**
  * Frees an `idm_plc3d`. NULL is a no-op.

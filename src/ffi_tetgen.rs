@@ -387,7 +387,7 @@ pub unsafe extern "C" fn idm_tetgen_read(
 /// # Safety
 /// `p` a live `idm_plc3d`; `out` valid for writing the struct.
 #[no_mangle]
-pub unsafe extern "C" fn idm_plc3d_view(
+pub unsafe extern "C" fn idm_plc3d_arrays(
     p: *const idm_plc3d,
     out: *mut idm_plc3d_view,
 ) -> idm_status {
@@ -416,6 +416,25 @@ pub unsafe extern "C" fn idm_plc3d_view(
         };
         unsafe { out.write(view) };
         Ok(())
+    })
+}
+
+/// Records `message` as this thread's last error and returns `IDM_ERR_INVALID_INPUT`: how the
+/// TetGen layer reports what it refuses itself (input idmesh does not implement, such as point
+/// attributes), so that `idm_last_error` explains every failure. NULL records an empty message.
+///
+/// # Safety
+/// `message` NULL or a NUL-terminated string.
+#[no_mangle]
+pub unsafe extern "C" fn idm_tetgen_report(message: *const c_char) -> idm_status {
+    guard(|| {
+        let text = if message.is_null() {
+            ""
+        } else {
+            // SAFETY: the caller's contract.
+            unsafe { c_str(message, "message") }?
+        };
+        Err(Failure::new(idm_status::IDM_ERR_INVALID_INPUT, text))
     })
 }
 
@@ -622,6 +641,11 @@ mod tests {
         // SAFETY: NULL is reported, not dereferenced.
         let st = unsafe { idm_tetgen_parse_switches(null(), null_mut()) };
         assert_eq!(st, idm_status::IDM_ERR_NULL_POINTER);
+        let msg = CString::new("point attributes are not supported").unwrap();
+        // SAFETY: a valid string.
+        let st = unsafe { idm_tetgen_report(msg.as_ptr()) };
+        assert_eq!(st, idm_status::IDM_ERR_INVALID_INPUT);
+        assert_eq!(last_error(), "point attributes are not supported");
     }
 
     /// A unit cube as a handle: 8 points, 6 quads with markers 1..6.
@@ -739,7 +763,7 @@ mod tests {
             let mut p = null_mut();
             assert_eq!(idm_tetgen_read(path.as_ptr(), &mut p), idm_status::IDM_OK);
             let mut v = std::mem::MaybeUninit::uninit();
-            assert_eq!(idm_plc3d_view(p, v.as_mut_ptr()), idm_status::IDM_OK);
+            assert_eq!(idm_plc3d_arrays(p, v.as_mut_ptr()), idm_status::IDM_OK);
             let v = v.assume_init();
             assert_eq!((v.base, v.num_points, v.num_facets), (1, 4, 4));
             assert_eq!(*v.point_markers, 5);

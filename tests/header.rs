@@ -120,8 +120,9 @@ fn header_declares_the_whole_api() {
         "enum idm_status idm_tetgen_parse_switches(",
         "enum idm_status idm_tetgen_resolve(",
         "enum idm_status idm_tetgen_read(",
-        "enum idm_status idm_plc3d_view(",
+        "enum idm_status idm_plc3d_arrays(",
         "void idm_plc3d_free(struct idm_plc3d *p);",
+        "enum idm_status idm_tetgen_report(const char *message);",
         "enum idm_status idm_mesher3d_tetgen(",
         "enum idm_status idm_mesher3d_write_tetgen(",
     ] {

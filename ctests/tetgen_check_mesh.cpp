@@ -1,5 +1,8 @@
 // Checks a mesh written in TetGen's files against its input, independently of who wrote it:
 //   tetgen_check_mesh INPUT STEM [MAX_VOLUME]
+//   tetgen_check_mesh --fails INPUT SWITCHES
+//     exit 0 when idmesh's own tetrahedralize(SWITCHES) on INPUT throws too (printing the code),
+//     so that a run on libtet.so.1.5 can be checked to fail exactly when idmesh itself fails.
 // reads INPUT (any file tetgenio::load_plc reads) and STEM.node/.ele/.face, and checks that
 // every tetrahedron is positively oriented, no face has more than two tetrahedra, every face
 // with one tetrahedron is listed in STEM.face, every input point is kept at its index, no
@@ -58,6 +61,18 @@ double tet_volume(const double *a, const double *b, const double *c, const doubl
 }  // namespace
 
 int main(int argc, char **argv) {
+  if (argc == 4 && std::string(argv[1]) == "--fails") {
+    tetgenio in, out;
+    if (!in.load_plc(argv[2], tetgenbehavior::POLY)) return 0;
+    std::string sw = std::string(argv[3]) + "Q";
+    try {
+      tetrahedralize(&sw[0], &in, &out);
+    } catch (int code) {
+      printf("idmesh fails on %s with code %d too\n", argv[2], code);
+      return 0;
+    }
+    return 1;
+  }
   if (argc < 3) {
     fprintf(stderr, "usage: tetgen_check_mesh INPUT STEM [MAX_VOLUME]\n");
     return 2;

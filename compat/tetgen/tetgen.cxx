@@ -197,6 +197,7 @@ std::string switch_string(const tetgenbehavior *b) {
   flag(b->quiet, "Q");
   flag(b->verbose, "V");
   flag(b->order != 1, "o");
+  flag(b->optlevel != 2 || b->optscheme != 7, "O");
   flag(b->epsilon != 1.0e-8, "T");
   if (b->steinerleft >= 0) {
     snprintf(num, sizeof num, " S%d ", b->steinerleft);

@@ -153,6 +153,9 @@ public:
   GetEdgeSteinerParamOnFace getedgesteinerparamonface;
   GetSteinerOnFace getsteineronface;
 
+  /* Called during quality refinement as tetunsuitable(pa, pb, pc, pd, elen, vol) with the
+   * corners, their 6 squared edge lengths (ab, bc, ca, ad, bd, cd) and the volume; true splits
+   * the tetrahedron. A C++ exception it throws is rethrown by tetrahedralize. */
   TetSizeFunc tetunsuitable;
 
 #ifndef IDMESH_TETGEN_LAYOUT_1_5

@@ -975,13 +975,15 @@ void idm_plc3d_free(struct idm_plc3d *p);
  * options replace the handle's (its sizing callback is kept). `*tetgen_code` (when not NULL)
  * gets TetGen's code for the outcome, also on failure: 0 success (including `IDM_INCOMPLETE`,
  * a mesh stopped at the `S` cap), 3 intersecting input, 10 other input errors, 2 internal
- * errors, 1 out of memory.
+ * errors, 1 out of memory. Items named in input error messages are numbered from `base` (the
+ * caller's `firstnumber`).
  *
  * # Safety
  * `m` a live handle; `sw` an `idm_tetgen_switches`; `tetgen_code` NULL or valid for a write.
  */
 enum idm_status idm_mesher3d_tetgen(struct idm_mesher3d *m,
                                     const struct idm_tetgen_switches *sw,
+                                    uint32_t base,
                                     int32_t *tetgen_code);
 
 /**

@@ -25,7 +25,7 @@ use crate::ffi3d::idm_mesher3d;
 use crate::input3d::check_plc;
 use crate::io::tetgen::read_input;
 use crate::mesh3d::{delaunay3d, tetrahedralize};
-use crate::switches::tetgen::{parse_string, resolve, write_outputs, TetSwitches};
+use crate::switches::tetgen::{parse_string, renumber, resolve, write_outputs, TetSwitches};
 
 /// TetGen's switches as parsed by `idm_tetgen_parse_switches` (the letter of each field is in
 /// its comment). Booleans are `int32_t`, 0 false.
@@ -477,7 +477,8 @@ fn tetgen_code(e: &Error) -> i32 {
 /// options replace the handle's (its sizing callback is kept). `*tetgen_code` (when not NULL)
 /// gets TetGen's code for the outcome, also on failure: 0 success (including `IDM_INCOMPLETE`,
 /// a mesh stopped at the `S` cap), 3 intersecting input, 10 other input errors, 2 internal
-/// errors, 1 out of memory.
+/// errors, 1 out of memory. Items named in input error messages are numbered from `base` (the
+/// caller's `firstnumber`).
 ///
 /// # Safety
 /// `m` a live handle; `sw` an `idm_tetgen_switches`; `tetgen_code` NULL or valid for a write.
@@ -485,6 +486,7 @@ fn tetgen_code(e: &Error) -> i32 {
 pub unsafe extern "C" fn idm_mesher3d_tetgen(
     m: *mut idm_mesher3d,
     sw: *const idm_tetgen_switches,
+    base: u32,
     tetgen_code: *mut i32,
 ) -> idm_status {
     let mut code = 2;
@@ -499,7 +501,10 @@ pub unsafe extern "C" fn idm_mesher3d_tetgen(
         m.opts.sizing = sizing;
         let mut fail = |e: Error| {
             code = self::tetgen_code(&e);
-            Failure::from(e)
+            match e {
+                Error::Input(ie) => Failure::from(Error::Input(renumber(&ie, base as usize))),
+                other => Failure::from(other),
+            }
         };
         if sw.detect {
             check_plc(&m.plc).map_err(&mut fail)?;
@@ -694,7 +699,10 @@ mod tests {
         let mut tets = 0usize;
         // SAFETY: live handle and valid pointers.
         unsafe {
-            assert_eq!(idm_mesher3d_tetgen(m, &sw, &mut code), idm_status::IDM_OK);
+            assert_eq!(
+                idm_mesher3d_tetgen(m, &sw, 0, &mut code),
+                idm_status::IDM_OK
+            );
             assert_eq!(code, 0);
             let st = idm_mesher3d_counts(m, null_mut(), &mut tets, null_mut(), null_mut());
             assert_eq!(st, idm_status::IDM_OK);
@@ -709,7 +717,7 @@ mod tests {
             let off = [0usize, 3];
             let st = idm_mesher3d_add_facet(m, tri.as_ptr(), off.as_ptr(), 1, null(), 0, 9);
             assert_eq!(st, idm_status::IDM_OK);
-            let st = idm_mesher3d_tetgen(m, &sw, &mut code);
+            let st = idm_mesher3d_tetgen(m, &sw, 0, &mut code);
             assert_eq!(st, idm_status::IDM_ERR_INVALID_INPUT);
             assert_eq!(code, 3, "{}", last_error());
             idm_mesher3d_free(m);

@@ -572,7 +572,8 @@ bool tetgenbehavior::parse_commandline(int argc, char **argv) {
   snprintf(commandline, sizeof commandline, "%s", line.c_str());
   idm_tetgen_switches w;
   if (idm_tetgen_parse_switches(text.c_str(), &w) != IDM_OK) {
-    fprintf(stderr, "Error:  %s\n", idm_last_error());
+    // Q takes no number, so any Q in the switches asked for quiet.
+    if (text.find('Q') == std::string::npos) fprintf(stderr, "Error:  %s\n", idm_last_error());
     return false;
   }
   apply(this, w);
@@ -800,7 +801,7 @@ void tetrahedralize(tetgenbehavior *b, tetgenio *in, tetgenio *out, tetgenio *ad
         idm_mesher3d_set_sizing(mh.m, call_tetunsuitable, &sizing) != IDM_OK)
       fail(2, quiet);
     int32_t code = 0;
-    idm_status s = idm_mesher3d_tetgen(mh.m, &w, &code);
+    idm_status s = idm_mesher3d_tetgen(mh.m, &w, (uint32_t)(in->firstnumber == 1 ? 1 : 0), &code);
     if (sizing.error) std::rethrow_exception(sizing.error);
     if (s == IDM_INCOMPLETE) {
       if (!quiet) fprintf(stderr, "Warning:  %s\n", idm_last_error());

@@ -14,6 +14,7 @@ use std::fs::File;
 use std::io::{self, Write};
 use std::path::Path;
 
+use crate::error::InputError;
 use crate::io::tetgen::{
     write_all_faces, write_edge, write_ele, write_face, write_neigh, write_node,
 };
@@ -432,6 +433,113 @@ pub fn write_outputs(
     Ok(())
 }
 
+/// Shifts the 0-based indices of an input error to the file's numbering (counts stay).
+pub fn renumber(e: &InputError, b: usize) -> InputError {
+    use InputError::*;
+    let i = |x: u64| x + b as u64;
+    match e.clone() {
+        NonFinitePoint { point } => NonFinitePoint { point: point + b },
+        DuplicatePoint { first, second } => DuplicatePoint {
+            first: first + b,
+            second: second + b,
+        },
+        SegmentIndexOutOfRange {
+            segment,
+            index,
+            num_points,
+        } => SegmentIndexOutOfRange {
+            segment: segment + b,
+            index: i(index),
+            num_points,
+        },
+        ZeroLengthSegment { segment } => ZeroLengthSegment {
+            segment: segment + b,
+        },
+        DuplicateSegment { first, second } => DuplicateSegment {
+            first: first + b,
+            second: second + b,
+        },
+        CrossingSegments { first, second } => CrossingSegments {
+            first: first + b,
+            second: second + b,
+        },
+        NonFiniteHole { hole } => NonFiniteHole { hole: hole + b },
+        HoleOutsideDomain { hole } => HoleOutsideDomain { hole: hole + b },
+        NonFiniteRegion { region } => NonFiniteRegion { region: region + b },
+        RegionOutsideDomain { region } => RegionOutsideDomain { region: region + b },
+        CoordinateTooLarge { point } => CoordinateTooLarge { point: point + b },
+        FacetWithoutPolygons { facet } => FacetWithoutPolygons { facet: facet + b },
+        EmptyPolygon { facet, polygon } => EmptyPolygon {
+            facet: facet + b,
+            polygon: polygon + b,
+        },
+        FacetIndexOutOfRange {
+            facet,
+            polygon,
+            index,
+            num_points,
+        } => FacetIndexOutOfRange {
+            facet: facet + b,
+            polygon: polygon + b,
+            index: i(index),
+            num_points,
+        },
+        RepeatedVertexInPolygon {
+            facet,
+            polygon,
+            vertex,
+        } => RepeatedVertexInPolygon {
+            facet: facet + b,
+            polygon: polygon + b,
+            vertex: vertex + b,
+        },
+        DegeneratePolygon { facet, polygon } => DegeneratePolygon {
+            facet: facet + b,
+            polygon: polygon + b,
+        },
+        DegenerateFacet { facet } => DegenerateFacet { facet: facet + b },
+        NonPlanarFacet { facet, vertex } => NonPlanarFacet {
+            facet: facet + b,
+            vertex: vertex + b,
+        },
+        NonFiniteFacetHole { facet, hole } => NonFiniteFacetHole {
+            facet: facet + b,
+            hole: hole + b,
+        },
+        FacetHoleOffPlane { facet, hole } => FacetHoleOffPlane {
+            facet: facet + b,
+            hole: hole + b,
+        },
+        SelfIntersectingFacet {
+            facet,
+            first_polygon,
+            second_polygon,
+        } => SelfIntersectingFacet {
+            facet: facet + b,
+            first_polygon: first_polygon + b,
+            second_polygon: second_polygon + b,
+        },
+        InvalidRegion3 { region } => InvalidRegion3 { region: region + b },
+        SegmentCrossesFacet { segment, facet } => SegmentCrossesFacet {
+            segment: segment + b,
+            facet: facet + b,
+        },
+        FacetsIntersect { first, second } => FacetsIntersect {
+            first: first + b,
+            second: second + b,
+        },
+        VertexOnFacet { vertex, facet } => VertexOnFacet {
+            vertex: vertex + b,
+            facet: facet + b,
+        },
+        VertexOnSegment { vertex, segment } => VertexOnSegment {
+            vertex: vertex + b,
+            segment: segment + b,
+        },
+        other => other,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -625,6 +733,46 @@ mod tests {
             }
             .options()
             .merge_coplanar
+        );
+    }
+
+    #[test]
+    fn renumber_shifts_indices_but_not_counts() {
+        let e = renumber(
+            &InputError::FacetIndexOutOfRange {
+                facet: 0,
+                polygon: 1,
+                index: 9,
+                num_points: 9,
+            },
+            1,
+        );
+        assert_eq!(
+            e,
+            InputError::FacetIndexOutOfRange {
+                facet: 1,
+                polygon: 2,
+                index: 10,
+                num_points: 9
+            }
+        );
+        let e = renumber(
+            &InputError::VertexOnFacet {
+                vertex: 3,
+                facet: 4,
+            },
+            1,
+        );
+        assert_eq!(
+            e,
+            InputError::VertexOnFacet {
+                vertex: 4,
+                facet: 5
+            }
+        );
+        assert_eq!(
+            renumber(&InputError::TooFewPoints3 { count: 2 }, 1),
+            InputError::TooFewPoints3 { count: 2 }
         );
     }
 }

@@ -5,9 +5,9 @@ use std::time::{Duration, Instant};
 
 use idmesh::input3d::check_plc;
 use idmesh::io::tetgen::{read_input, TetgenInput};
-use idmesh::switches::tetgen::{self as tetgen_switches, resolve, say, write_outputs};
+use idmesh::switches::tetgen::{self as tetgen_switches, renumber, resolve, say, write_outputs};
 use idmesh::switches::tetgen::{Parsed, TetSwitches};
-use idmesh::{delaunay3d, tetrahedralize, Error, InputError, TetMesh};
+use idmesh::{delaunay3d, tetrahedralize, Error, TetMesh};
 
 /// The help text of `idmesh tetgen --help`.
 pub const HELP: &str = "\
@@ -134,113 +134,6 @@ fn describe(e: &Error, base: u32, file: &str) -> String {
     }
 }
 
-/// Shifts the 0-based indices of an input error to the file's numbering (counts stay).
-fn renumber(e: &InputError, b: usize) -> InputError {
-    use InputError::*;
-    let i = |x: u64| x + b as u64;
-    match e.clone() {
-        NonFinitePoint { point } => NonFinitePoint { point: point + b },
-        DuplicatePoint { first, second } => DuplicatePoint {
-            first: first + b,
-            second: second + b,
-        },
-        SegmentIndexOutOfRange {
-            segment,
-            index,
-            num_points,
-        } => SegmentIndexOutOfRange {
-            segment: segment + b,
-            index: i(index),
-            num_points,
-        },
-        ZeroLengthSegment { segment } => ZeroLengthSegment {
-            segment: segment + b,
-        },
-        DuplicateSegment { first, second } => DuplicateSegment {
-            first: first + b,
-            second: second + b,
-        },
-        CrossingSegments { first, second } => CrossingSegments {
-            first: first + b,
-            second: second + b,
-        },
-        NonFiniteHole { hole } => NonFiniteHole { hole: hole + b },
-        HoleOutsideDomain { hole } => HoleOutsideDomain { hole: hole + b },
-        NonFiniteRegion { region } => NonFiniteRegion { region: region + b },
-        RegionOutsideDomain { region } => RegionOutsideDomain { region: region + b },
-        CoordinateTooLarge { point } => CoordinateTooLarge { point: point + b },
-        FacetWithoutPolygons { facet } => FacetWithoutPolygons { facet: facet + b },
-        EmptyPolygon { facet, polygon } => EmptyPolygon {
-            facet: facet + b,
-            polygon: polygon + b,
-        },
-        FacetIndexOutOfRange {
-            facet,
-            polygon,
-            index,
-            num_points,
-        } => FacetIndexOutOfRange {
-            facet: facet + b,
-            polygon: polygon + b,
-            index: i(index),
-            num_points,
-        },
-        RepeatedVertexInPolygon {
-            facet,
-            polygon,
-            vertex,
-        } => RepeatedVertexInPolygon {
-            facet: facet + b,
-            polygon: polygon + b,
-            vertex: vertex + b,
-        },
-        DegeneratePolygon { facet, polygon } => DegeneratePolygon {
-            facet: facet + b,
-            polygon: polygon + b,
-        },
-        DegenerateFacet { facet } => DegenerateFacet { facet: facet + b },
-        NonPlanarFacet { facet, vertex } => NonPlanarFacet {
-            facet: facet + b,
-            vertex: vertex + b,
-        },
-        NonFiniteFacetHole { facet, hole } => NonFiniteFacetHole {
-            facet: facet + b,
-            hole: hole + b,
-        },
-        FacetHoleOffPlane { facet, hole } => FacetHoleOffPlane {
-            facet: facet + b,
-            hole: hole + b,
-        },
-        SelfIntersectingFacet {
-            facet,
-            first_polygon,
-            second_polygon,
-        } => SelfIntersectingFacet {
-            facet: facet + b,
-            first_polygon: first_polygon + b,
-            second_polygon: second_polygon + b,
-        },
-        InvalidRegion3 { region } => InvalidRegion3 { region: region + b },
-        SegmentCrossesFacet { segment, facet } => SegmentCrossesFacet {
-            segment: segment + b,
-            facet: facet + b,
-        },
-        FacetsIntersect { first, second } => FacetsIntersect {
-            first: first + b,
-            second: second + b,
-        },
-        VertexOnFacet { vertex, facet } => VertexOnFacet {
-            vertex: vertex + b,
-            facet: facet + b,
-        },
-        VertexOnSegment { vertex, segment } => VertexOnSegment {
-            vertex: vertex + b,
-            segment: segment + b,
-        },
-        other => other,
-    }
-}
-
 fn statistics(input: &TetgenInput, mesh: &TetMesh, [read, meshing, write]: [Duration; 3]) {
     let p = &input.plc;
     let s = mesh.stats();
@@ -279,50 +172,5 @@ fn statistics(input: &TetgenInput, mesh: &TetMesh, [read, meshing, write]: [Dura
     );
     if !mesh.complete {
         println!("The Steiner point limit was reached: the mesh is incomplete.");
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn renumber_shifts_indices_but_not_counts() {
-        let e = renumber(
-            &InputError::FacetIndexOutOfRange {
-                facet: 0,
-                polygon: 1,
-                index: 9,
-                num_points: 9,
-            },
-            1,
-        );
-        assert_eq!(
-            e,
-            InputError::FacetIndexOutOfRange {
-                facet: 1,
-                polygon: 2,
-                index: 10,
-                num_points: 9
-            }
-        );
-        let e = renumber(
-            &InputError::VertexOnFacet {
-                vertex: 3,
-                facet: 4,
-            },
-            1,
-        );
-        assert_eq!(
-            e,
-            InputError::VertexOnFacet {
-                vertex: 4,
-                facet: 5
-            }
-        );
-        assert_eq!(
-            renumber(&InputError::TooFewPoints3 { count: 2 }, 1),
-            InputError::TooFewPoints3 { count: 2 }
-        );
     }
 }

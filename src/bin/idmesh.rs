@@ -11,8 +11,6 @@ mod names;
 mod show_cmd;
 #[path = "idmesh/tetgen_cmd.rs"]
 mod tetgen_cmd;
-#[path = "idmesh/tetgen_switches.rs"]
-mod tetgen_switches;
 #[path = "idmesh/triangle_cmd.rs"]
 mod triangle_cmd;
 

@@ -97,12 +97,12 @@ pub type idm_sizing3d_fn = Option<
 pub struct idm_mesher3d {
     /// The input collected so far (markers always have one entry per item: the default 0
     /// fills in for calls made without markers).
-    plc: Plc,
+    pub(crate) plc: Plc,
     /// The options, including the sizing callback.
-    opts: Options3,
+    pub(crate) opts: Options3,
     /// The output of the last successful (or `IDM_INCOMPLETE`) refine or delaunay call;
     /// dropped by any change of input or options, so getters never describe other input.
-    mesh: Option<TetMesh>,
+    pub(crate) mesh: Option<TetMesh>,
 }
 
 impl_handle!(

@@ -26,10 +26,12 @@ pub mod common;
 pub mod input_error;
 pub mod mesh2d;
 pub mod mesh3d;
+pub mod tetgen;
 pub mod triangle;
 
 pub use common::*;
 pub use input_error::*;
 pub use mesh2d::*;
 pub use mesh3d::*;
+pub use tetgen::*;
 pub use triangle::*;

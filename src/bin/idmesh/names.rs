@@ -5,6 +5,8 @@
 //! * Outputs are `FILE.1.node`, `FILE.1.ele`, ...; when `FILE` already ends in an iteration
 //!   number (`box.1`), the next one is used (`box.2.*`).
 
+use idmesh::switches::next_iteration;
+
 /// Where to read and where to write.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Files {
@@ -38,25 +40,6 @@ pub fn resolve(file: &str, poly_switch: bool) -> Files {
         poly,
         out_stem: next_iteration(stem),
     }
-}
-
-/// `box` -> `box.1`, `box.1` -> `box.2`, `dir.v2/box` -> `dir.v2/box.1`. Only the last path
-/// component is examined, so dots in directory names do not count.
-fn next_iteration(stem: &str) -> String {
-    let name_start = stem.rfind(['/', '\\']).map_or(0, |i| i + 1);
-    let name = &stem[name_start..];
-    // A leading dot starts a hidden file name, not an iteration number.
-    if let Some(dot) = name.rfind('.').filter(|&d| d > 0) {
-        let digits = &name[dot + 1..];
-        if !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) {
-            if let Ok(n) = digits.parse::<u64>() {
-                if let Some(next) = n.checked_add(1) {
-                    return format!("{}{next}", &stem[..name_start + dot + 1]);
-                }
-            }
-        }
-    }
-    format!("{stem}.1")
 }
 
 #[cfg(test)]

@@ -1,4 +1,6 @@
-//! TetGen-style command line parsing for `idmesh tetgen`.
+//! TetGen's switches: the one parser behind `idmesh tetgen`, the C ABI's
+//! `idm_tetgen_parse_switches` and the TetGen compatibility layer (`compat/tetgen`), with the
+//! file naming and output writing that TetGen's command line does.
 //!
 //! Switches are letters concatenated in one or more arguments starting with `-`
 //! (`-pq1.414a0.1V` or `-p -q1.414 -a0.1 -V`), in any order relative to the file name. Numbers
@@ -7,6 +9,16 @@
 //! `-a1e-5` is 1e-5 but `-a0.1e` swallows the `e`. The run is converted like `strtod` (`strtol`
 //! for `S`): its longest prefix that is a number. Every letter TetGen accepts but idmesh does
 //! not implement is an error naming it, never silently ignored.
+
+use std::fs::File;
+use std::io::{self, Write};
+use std::path::Path;
+
+use crate::error::InputError;
+use crate::io::tetgen::{
+    write_all_faces, write_edge, write_ele, write_face, write_neigh, write_node,
+};
+use crate::mesh3d::{Options3, TetMesh};
 
 /// The parsed switches. Field comments give the letter.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -35,6 +47,9 @@ pub struct TetSwitches {
     pub edges: bool,
     /// `n`: write a `.neigh` file.
     pub neighbors: bool,
+    /// `nn` (`n` given twice): also the tetrahedra on both sides of each output face (TetGen's
+    /// `adjtetlist`).
+    pub face_adjacency: bool,
     /// `N`, `E`, `F`: do not write the `.node` / `.ele` / `.face` file.
     pub no_node: bool,
     /// See `no_node`.
@@ -125,8 +140,9 @@ fn exp_number(c: char) -> bool {
     c.is_ascii_digit() || ".e-+".contains(c)
 }
 
-/// Applies one switch group such as `-pq1.414a0.1V`.
-fn parse_group(arg: &str, sw: &mut TetSwitches) -> Result<(), String> {
+/// Applies one switch group such as `-pq1.414a0.1V` (the leading character, `-` on a command
+/// line, is skipped). Implications are applied by [`finish`] once all groups are read.
+pub fn parse_group(arg: &str, sw: &mut TetSwitches) -> Result<(), String> {
     let chars: Vec<char> = arg.chars().skip(1).collect();
     if chars.is_empty() {
         return Err("empty switch '-'".into());
@@ -181,7 +197,10 @@ fn parse_group(arg: &str, sw: &mut TetSwitches) -> Result<(), String> {
             'z' => sw.zero_based = true,
             'f' => sw.all_faces = true,
             'e' => sw.edges = true,
-            'n' => sw.neighbors = true,
+            'n' => {
+                sw.face_adjacency |= sw.neighbors;
+                sw.neighbors = true;
+            }
             'N' => sw.no_node = true,
             'E' => sw.no_ele = true,
             'F' => sw.no_face = true,
@@ -224,8 +243,30 @@ fn parse_group(arg: &str, sw: &mut TetSwitches) -> Result<(), String> {
     Ok(())
 }
 
-/// Parses the arguments after `idmesh tetgen`. Implications are applied as TetGen applies
-/// them: `a<volume>` turns on `q`; `q` and `d` turn on `p`.
+/// Applies the implications as TetGen applies them: `a<volume>` turns on `q`; `q` and `d` turn
+/// on `p`.
+pub fn finish(sw: &mut TetSwitches) {
+    if sw.max_volume.is_some() && sw.radius_edge.is_none() {
+        sw.radius_edge = Some(2.0);
+    }
+    if sw.radius_edge.is_some() || sw.detect {
+        sw.plc = true;
+    }
+}
+
+/// Parses a switch string as TetGen's library takes it (`"pq1.414a0.1"`): whitespace separated
+/// groups, each with or without a leading `-`. An empty string is no switches.
+pub fn parse_string(text: &str) -> Result<TetSwitches, String> {
+    let mut sw = TetSwitches::default();
+    for group in text.split_whitespace() {
+        let body = group.strip_prefix('-').unwrap_or(group);
+        parse_group(&format!("-{body}"), &mut sw)?;
+    }
+    finish(&mut sw);
+    Ok(sw)
+}
+
+/// Parses the arguments after `idmesh tetgen`, with the implications of [`finish`].
 pub fn parse(args: &[String]) -> Result<Parsed, String> {
     let mut sw = TetSwitches::default();
     let mut file: Option<&String> = None;
@@ -246,18 +287,256 @@ pub fn parse(args: &[String]) -> Result<Parsed, String> {
             file = Some(arg);
         }
     }
-    if sw.max_volume.is_some() && sw.radius_edge.is_none() {
-        sw.radius_edge = Some(2.0);
-    }
-    if sw.radius_edge.is_some() || sw.detect {
-        sw.plc = true;
-    }
+    finish(&mut sw);
     match file {
         Some(f) => Ok(Parsed::Run {
             switches: sw,
             file: f.clone(),
         }),
         None => Err("no input file given; try 'idmesh tetgen --help'".into()),
+    }
+}
+
+/// Says something unless `-Q`.
+pub fn say(sw: &TetSwitches, text: std::fmt::Arguments<'_>) {
+    if !sw.quiet {
+        println!("{text}");
+    }
+}
+
+/// The extensions of PLC files, which imply `-p`.
+pub const PLC_EXTENSIONS: [&str; 6] = ["poly", "smesh", "off", "stl", "ply", "mesh"];
+
+/// Where to read and where to write.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Files {
+    /// The file to read.
+    pub input: String,
+    /// Whether the input is read as a PLC.
+    pub plc: bool,
+    /// The output name without extension, e.g. `box.1`.
+    pub out_stem: String,
+}
+
+impl Files {
+    /// The output file with extension `ext` (without dot).
+    pub fn output(&self, ext: &str) -> String {
+        format!("{}.{ext}", self.out_stem)
+    }
+}
+
+/// Resolves the file argument as TetGen does: a known extension names the format (PLC
+/// extensions imply `-p`); without one, `-p` reads `FILE.poly` (or `FILE.smesh` when there is
+/// no `.poly`), else `FILE.node`. Outputs get the next iteration number unless `-I`.
+pub fn resolve(file: &str, sw: &TetSwitches) -> Files {
+    let ext = Path::new(file)
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase());
+    let (stem, input, plc) = match ext.as_deref() {
+        Some(e) if PLC_EXTENSIONS.contains(&e) => {
+            (&file[..file.len() - e.len() - 1], file.to_string(), true)
+        }
+        Some("node") => (&file[..file.len() - 5], file.to_string(), sw.plc),
+        _ if sw.plc => {
+            let poly = format!("{file}.poly");
+            let smesh = format!("{file}.smesh");
+            let input = if !Path::new(&poly).exists() && Path::new(&smesh).exists() {
+                smesh
+            } else {
+                poly
+            };
+            (file, input, true)
+        }
+        _ => (file, format!("{file}.node"), false),
+    };
+    let out_stem = if sw.no_iteration {
+        stem.to_string()
+    } else {
+        super::next_iteration(stem)
+    };
+    Files {
+        input,
+        plc,
+        out_stem,
+    }
+}
+
+impl TetSwitches {
+    /// The mesher options these switches ask for.
+    pub fn options(&self) -> Options3 {
+        Options3 {
+            radius_edge: self.radius_edge,
+            max_volume: self.max_volume,
+            region_max_volume: self.region_volume,
+            region_attributes: self.region_attributes,
+            max_steiner: self.max_steiner,
+            keep_surface: self.keep_surface,
+            merge_coplanar: !self.no_merge,
+            verbose: self.verbose && !self.quiet,
+            ..Options3::default()
+        }
+    }
+}
+
+/// Creates `name` and writes it with `write`; errors name the file.
+fn write_file(
+    sw: &TetSwitches,
+    name: &str,
+    write: impl FnOnce(&mut File) -> io::Result<()>,
+) -> Result<(), String> {
+    say(sw, format_args!("Writing {name}."));
+    let mut f = File::create(name).map_err(|e| format!("cannot create {name}: {e}"))?;
+    write(&mut f)
+        .and_then(|()| f.flush())
+        .map_err(|e| format!("cannot write {name}: {e}"))
+}
+
+/// Writes the output files TetGen's command line writes for these switches: `STEM.node`,
+/// `.ele`, `.face` (unless `-N`, `-E`, `-F`), `.edge` with `-e`, `.neigh` with `-n`. As in
+/// TetGen, vertex markers are written when the input had them (`node_markers`) and face and
+/// edge markers for PLC input, both unless `-B`.
+pub fn write_outputs(
+    sw: &TetSwitches,
+    out_stem: &str,
+    plc: bool,
+    node_markers: bool,
+    mesh: &TetMesh,
+    base: u32,
+) -> Result<(), String> {
+    let node_markers = !sw.no_markers && node_markers;
+    let markers = !sw.no_markers && plc;
+    let name = |ext: &str| format!("{out_stem}.{ext}");
+    if !sw.no_node {
+        write_file(sw, &name("node"), |f| {
+            write_node(f, mesh, base, node_markers)
+        })?;
+    }
+    if !sw.no_ele {
+        write_file(sw, &name("ele"), |f| write_ele(f, mesh, base))?;
+    }
+    if !sw.no_face {
+        write_file(sw, &name("face"), |f| {
+            if sw.all_faces {
+                write_all_faces(f, mesh, base, markers)
+            } else {
+                write_face(f, mesh, base, markers)
+            }
+        })?;
+    }
+    if sw.edges {
+        write_file(sw, &name("edge"), |f| write_edge(f, mesh, base, markers))?;
+    }
+    if sw.neighbors {
+        write_file(sw, &name("neigh"), |f| write_neigh(f, mesh, base))?;
+    }
+    Ok(())
+}
+
+/// Shifts the 0-based indices of an input error to the file's numbering (counts stay).
+pub fn renumber(e: &InputError, b: usize) -> InputError {
+    use InputError::*;
+    let i = |x: u64| x + b as u64;
+    match e.clone() {
+        NonFinitePoint { point } => NonFinitePoint { point: point + b },
+        DuplicatePoint { first, second } => DuplicatePoint {
+            first: first + b,
+            second: second + b,
+        },
+        SegmentIndexOutOfRange {
+            segment,
+            index,
+            num_points,
+        } => SegmentIndexOutOfRange {
+            segment: segment + b,
+            index: i(index),
+            num_points,
+        },
+        ZeroLengthSegment { segment } => ZeroLengthSegment {
+            segment: segment + b,
+        },
+        DuplicateSegment { first, second } => DuplicateSegment {
+            first: first + b,
+            second: second + b,
+        },
+        CrossingSegments { first, second } => CrossingSegments {
+            first: first + b,
+            second: second + b,
+        },
+        NonFiniteHole { hole } => NonFiniteHole { hole: hole + b },
+        HoleOutsideDomain { hole } => HoleOutsideDomain { hole: hole + b },
+        NonFiniteRegion { region } => NonFiniteRegion { region: region + b },
+        RegionOutsideDomain { region } => RegionOutsideDomain { region: region + b },
+        CoordinateTooLarge { point } => CoordinateTooLarge { point: point + b },
+        FacetWithoutPolygons { facet } => FacetWithoutPolygons { facet: facet + b },
+        EmptyPolygon { facet, polygon } => EmptyPolygon {
+            facet: facet + b,
+            polygon: polygon + b,
+        },
+        FacetIndexOutOfRange {
+            facet,
+            polygon,
+            index,
+            num_points,
+        } => FacetIndexOutOfRange {
+            facet: facet + b,
+            polygon: polygon + b,
+            index: i(index),
+            num_points,
+        },
+        RepeatedVertexInPolygon {
+            facet,
+            polygon,
+            vertex,
+        } => RepeatedVertexInPolygon {
+            facet: facet + b,
+            polygon: polygon + b,
+            vertex: vertex + b,
+        },
+        DegeneratePolygon { facet, polygon } => DegeneratePolygon {
+            facet: facet + b,
+            polygon: polygon + b,
+        },
+        DegenerateFacet { facet } => DegenerateFacet { facet: facet + b },
+        NonPlanarFacet { facet, vertex } => NonPlanarFacet {
+            facet: facet + b,
+            vertex: vertex + b,
+        },
+        NonFiniteFacetHole { facet, hole } => NonFiniteFacetHole {
+            facet: facet + b,
+            hole: hole + b,
+        },
+        FacetHoleOffPlane { facet, hole } => FacetHoleOffPlane {
+            facet: facet + b,
+            hole: hole + b,
+        },
+        SelfIntersectingFacet {
+            facet,
+            first_polygon,
+            second_polygon,
+        } => SelfIntersectingFacet {
+            facet: facet + b,
+            first_polygon: first_polygon + b,
+            second_polygon: second_polygon + b,
+        },
+        InvalidRegion3 { region } => InvalidRegion3 { region: region + b },
+        SegmentCrossesFacet { segment, facet } => SegmentCrossesFacet {
+            segment: segment + b,
+            facet: facet + b,
+        },
+        FacetsIntersect { first, second } => FacetsIntersect {
+            first: first + b,
+            second: second + b,
+        },
+        VertexOnFacet { vertex, facet } => VertexOnFacet {
+            vertex: vertex + b,
+            facet: facet + b,
+        },
+        VertexOnSegment { vertex, segment } => VertexOnSegment {
+            vertex: vertex + b,
+            segment: segment + b,
+        },
+        other => other,
     }
 }
 
@@ -377,5 +656,123 @@ mod tests {
         assert!(run(&["a", "b"]).unwrap_err().contains("more than one"));
         let args = vec!["-p".to_string(), "--help".to_string()];
         assert_eq!(parse(&args).unwrap(), Parsed::Help);
+    }
+
+    fn sw(plc: bool) -> TetSwitches {
+        TetSwitches {
+            plc,
+            ..TetSwitches::default()
+        }
+    }
+
+    #[test]
+    fn nn_asks_for_face_adjacency_and_strings_parse_like_groups() {
+        let s = parse_string("pq1.414a0.01nnfAzQ").unwrap();
+        assert!(s.plc && s.neighbors && s.face_adjacency && s.all_faces);
+        assert!(s.region_attributes && s.zero_based && s.quiet);
+        assert_eq!((s.radius_edge, s.max_volume), (Some(1.414), Some(0.01)));
+        let s = parse_string("-pn -V").unwrap();
+        assert!(s.neighbors && !s.face_adjacency && s.verbose);
+        assert_eq!(parse_string("").unwrap(), TetSwitches::default());
+        let e = parse_string("pqc").unwrap_err();
+        assert!(e.contains("-c"), "{e}");
+        assert!(parse_string("a1").unwrap().plc, "a<volume> implies q and p");
+    }
+
+    #[test]
+    fn names_follow_tetgen() {
+        let f = resolve("d/box.off", &sw(false));
+        assert_eq!(
+            f,
+            Files {
+                input: "d/box.off".into(),
+                plc: true,
+                out_stem: "d/box.1".into()
+            }
+        );
+        let f = resolve("box.1.smesh", &sw(false));
+        assert_eq!((f.plc, f.out_stem.as_str()), (true, "box.2"));
+        let f = resolve("pts", &sw(false));
+        assert_eq!((f.input.as_str(), f.plc), ("pts.node", false));
+        let f = resolve("pts.node", &sw(true));
+        assert_eq!((f.input.as_str(), f.plc), ("pts.node", true));
+        let f = resolve("/nonexistent-idmesh/x", &sw(true));
+        assert_eq!(f.input, "/nonexistent-idmesh/x.poly");
+        let f = resolve(
+            "a.v2/x.STL",
+            &TetSwitches {
+                no_iteration: true,
+                ..sw(false)
+            },
+        );
+        assert_eq!((f.plc, f.out_stem.as_str()), (true, "a.v2/x"));
+    }
+
+    #[test]
+    fn options_map_the_switches() {
+        let s = TetSwitches {
+            radius_edge: Some(1.5),
+            max_volume: Some(0.25),
+            region_volume: true,
+            region_attributes: true,
+            max_steiner: Some(7),
+            verbose: true,
+            quiet: true,
+            ..sw(true)
+        };
+        let o = s.options();
+        assert_eq!(
+            (o.radius_edge, o.max_volume, o.max_steiner),
+            (Some(1.5), Some(0.25), Some(7))
+        );
+        assert!(o.region_max_volume && o.region_attributes && !o.verbose && o.merge_coplanar);
+        assert!(
+            !TetSwitches {
+                no_merge: true,
+                ..sw(true)
+            }
+            .options()
+            .merge_coplanar
+        );
+    }
+
+    #[test]
+    fn renumber_shifts_indices_but_not_counts() {
+        let e = renumber(
+            &InputError::FacetIndexOutOfRange {
+                facet: 0,
+                polygon: 1,
+                index: 9,
+                num_points: 9,
+            },
+            1,
+        );
+        assert_eq!(
+            e,
+            InputError::FacetIndexOutOfRange {
+                facet: 1,
+                polygon: 2,
+                index: 10,
+                num_points: 9
+            }
+        );
+        let e = renumber(
+            &InputError::VertexOnFacet {
+                vertex: 3,
+                facet: 4,
+            },
+            1,
+        );
+        assert_eq!(
+            e,
+            InputError::VertexOnFacet {
+                vertex: 4,
+                facet: 5
+            }
+        );
+        assert_eq!(
+            renumber(&InputError::TooFewPoints3 { count: 2 }, 1),
+            InputError::TooFewPoints3 { count: 2 }
+        );
     }
 }

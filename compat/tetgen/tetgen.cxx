@@ -1,0 +1,832 @@
+// TetGen's library interface over idmesh's C ABI (see tetgen.h for what is supported).
+//
+// This file translates only: tetgenio arrays to idm_mesher3d calls and back, tetgenbehavior
+// fields to idmesh's switch parser (the one behind `idmesh tetgen`) and back, and idmesh's
+// errors to TetGen's thrown int codes. The meshing, the switch parsing, the file reading and
+// the writing of output files are idmesh's. Every exception is thrown from C++ frames only:
+// idmesh calls return a status, and a C++ exception from the user's tetunsuitable is caught in
+// the callback and rethrown after idmesh has returned.
+#include "tetgen.h"
+
+#include <idmesh.h>
+
+#include <exception>
+#include <new>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#ifdef IDMESH_TETGEN_LAYOUT_1_5
+// Programs built against Debian's libtet1.5-dev allocate these objects themselves (tetgenio
+// on the stack, tetgenbehavior too): the sizes must be TetGen 1.5.0's on x86-64.
+#if defined(__x86_64__) && defined(__LP64__)
+static_assert(sizeof(tetgenio) == 392, "tetgenio must have TetGen 1.5.0's layout");
+static_assert(sizeof(tetgenbehavior) == 5456, "tetgenbehavior must have TetGen 1.5.0's layout");
+#endif
+
+// Named by TetGen 1.5's inline terminatetetgen(), which programs compile into themselves;
+// idmesh creates no such objects, so there is nothing to release.
+tetgenmesh::arraypool::~arraypool() {}
+tetgenmesh::memorypool::~memorypool() {}
+#endif
+
+namespace {
+
+// Owners of the C ABI's handles, so that a throw frees them.
+struct Mesher {
+  idm_mesher3d *m = nullptr;
+  Mesher() {
+    if (idm_mesher3d_new(&m) != IDM_OK) throw 1;
+  }
+  ~Mesher() { idm_mesher3d_free(m); }
+  Mesher(const Mesher &) = delete;
+  Mesher &operator=(const Mesher &) = delete;
+};
+
+struct Plc {
+  idm_plc3d *p = nullptr;
+  ~Plc() { idm_plc3d_free(p); }
+};
+
+// Prints the message unless quiet and throws TetGen's code.
+[[noreturn]] void fail(int code, bool quiet) {
+  if (!quiet) fprintf(stderr, "Error:  %s\n", idm_last_error());
+  throw code;
+}
+
+// TetGen's code for a failed status whose cause is not known more precisely.
+int code_of(idm_status s) {
+  switch (s) {
+  case IDM_ERR_INTERNAL:
+    return 2;
+  default:
+    return 10;
+  }
+}
+
+bool has_suffix(const std::string &s, const char *suffix) {
+  size_t n = strlen(suffix);
+  return s.size() >= n && s.compare(s.size() - n, n, suffix) == 0;
+}
+
+template <class T> T *new_array(size_t n) { return n == 0 ? nullptr : new T[n]; }
+
+// Reads `path` with idmesh's readers into `io` (its arrays are replaced).
+bool read_into(tetgenio *io, const std::string &path) {
+  Plc plc;
+  idm_plc3d_view v;
+  if (idm_tetgen_read(path.c_str(), &plc.p) != IDM_OK || idm_plc3d_arrays(plc.p, &v) != IDM_OK) {
+    fprintf(stderr, "Error:  %s\n", idm_last_error());
+    return false;
+  }
+  io->clean_memory();
+  const int b = (int)v.base;
+  io->firstnumber = b;
+  io->numberofpoints = (int)v.num_points;
+  io->pointlist = new_array<REAL>(3 * v.num_points);
+  for (size_t i = 0; i < 3 * v.num_points; i++) io->pointlist[i] = v.points[i];
+  if (v.point_markers != nullptr) {
+    io->pointmarkerlist = new_array<int>(v.num_points);
+    for (size_t i = 0; i < v.num_points; i++) io->pointmarkerlist[i] = v.point_markers[i];
+  }
+  if (v.num_point_attributes > 0) {
+    size_t n = v.num_point_attributes * v.num_points;
+    io->numberofpointattributes = (int)v.num_point_attributes;
+    io->pointattributelist = new_array<REAL>(n);
+    for (size_t i = 0; i < n; i++) io->pointattributelist[i] = v.point_attributes[i];
+  }
+  io->numberoffacets = (int)v.num_facets;
+  io->facetlist = new_array<tetgenio::facet>(v.num_facets);
+  io->facetmarkerlist = new_array<int>(v.num_facets);
+  for (size_t f = 0; f < v.num_facets; f++) {
+    tetgenio::facet *fa = &io->facetlist[f];
+    tetgenio::init(fa);
+    io->facetmarkerlist[f] = v.facet_markers[f];
+    size_t p0 = v.facet_polygon_offsets[f], p1 = v.facet_polygon_offsets[f + 1];
+    fa->numberofpolygons = (int)(p1 - p0);
+    fa->polygonlist = new_array<tetgenio::polygon>(p1 - p0);
+    for (size_t k = p0; k < p1; k++) {
+      tetgenio::polygon *p = &fa->polygonlist[k - p0];
+      tetgenio::init(p);
+      size_t i0 = v.polygon_offsets[k], i1 = v.polygon_offsets[k + 1];
+      p->numberofvertices = (int)(i1 - i0);
+      p->vertexlist = new_array<int>(i1 - i0);
+      for (size_t i = i0; i < i1; i++) p->vertexlist[i - i0] = (int)v.polygon_indices[i] + b;
+    }
+    size_t h0 = v.facet_hole_offsets[f], h1 = v.facet_hole_offsets[f + 1];
+    fa->numberofholes = (int)(h1 - h0);
+    fa->holelist = new_array<REAL>(3 * (h1 - h0));
+    for (size_t i = 3 * h0; i < 3 * h1; i++) fa->holelist[i - 3 * h0] = v.facet_holes[i];
+  }
+  io->numberofholes = (int)v.num_holes;
+  io->holelist = new_array<REAL>(3 * v.num_holes);
+  for (size_t i = 0; i < 3 * v.num_holes; i++) io->holelist[i] = v.holes[i];
+  io->numberofregions = (int)v.num_regions;
+  io->regionlist = new_array<REAL>(5 * v.num_regions);
+  for (size_t i = 0; i < 5 * v.num_regions; i++) io->regionlist[i] = v.regions[i];
+  return true;
+}
+
+// Reads `name`, adding `ext` when it does not end with it already.
+bool read_with(tetgenio *io, const char *name, const char *ext) {
+  std::string path = name;
+  if (!has_suffix(path, ext)) path += ext;
+  return read_into(io, path);
+}
+
+bool refuse_load(const char *what, const char *name) {
+  fprintf(stderr, "Error:  idmesh's TetGen interface does not read %s files (%s).\n", what, name);
+  return false;
+}
+
+// The switch string equivalent to the fields of `b`, for idmesh's parser: every field that
+// differs from what the switches would set is spelled as its switch, so that a field idmesh
+// does not implement is refused by name rather than ignored.
+std::string switch_string(const tetgenbehavior *b) {
+  std::string s;
+  char num[64];
+  auto flag = [&s](int on, const char *letters) {
+    if (on) s += letters;
+  };
+  flag(b->plc, "p");
+  if (b->facet_ang_tol != 179.9) {
+    snprintf(num, sizeof num, " p%.17g ", b->facet_ang_tol);
+    s += num;
+  }
+  flag(b->psc, "s");
+  flag(b->refine, "r");
+  if (b->quality) {
+    snprintf(num, sizeof num, " q%.17g", b->minratio);
+    s += num;
+    if (b->mindihedral != 0.0) {
+      snprintf(num, sizeof num, "/%.17g", b->mindihedral);
+      s += num;
+    }
+    s += ' ';
+  }
+  flag(b->nobisect, "Y");
+  flag(b->coarsen || b->reversetetori, "R");
+  flag(b->weighted, "w");
+  flag(b->incrflip, "l");
+  flag(b->flipinsert, "L");
+  flag(b->metric, "m");
+  flag(b->varvolume, "a");
+  if (b->fixedvolume) {
+    snprintf(num, sizeof num, " a%.17g ", b->maxvolume);
+    s += num;
+  }
+  flag(b->regionattrib, "A");
+  flag(b->insertaddpoints, "i");
+  flag(b->diagnose, "d");
+  flag(b->convex, "c");
+  flag(b->nomergefacet || b->nomergevertex, "M");
+  flag(b->noexact || b->nostaticfilter, "X");
+  flag(b->zeroindex, "z");
+  flag(b->facesout, "f");
+  flag(b->edgesout, "e");
+  for (int i = 0; i < b->neighout && i < 2; i++) s += "n";
+  flag(b->voroout, "v");
+  flag(b->meditview, "g");
+  flag(b->vtkview, "k");
+  flag(b->nobound, "B");
+  flag(b->nonodewritten, "N");
+  flag(b->noelewritten, "E");
+  flag(b->nofacewritten, "F");
+  flag(b->noiterationnum, "I");
+  flag(b->docheck, "C");
+  flag(b->quiet, "Q");
+  flag(b->verbose, "V");
+  flag(b->order != 1, "o");
+  flag(b->optlevel != 2 || b->optscheme != 7, "O");
+  flag(b->epsilon != 1.0e-8, "T");
+  if (b->steinerleft >= 0) {
+    snprintf(num, sizeof num, " S%d ", b->steinerleft);
+    s += num;
+  }
+  return s;
+}
+
+// Sets the fields of `b` that the parsed switches describe.
+void apply(tetgenbehavior *b, const idm_tetgen_switches &w) {
+  b->plc = w.plc;
+  b->quality = w.radius_edge > 0;
+  if (w.radius_edge > 0) b->minratio = w.radius_edge;
+  b->varvolume = w.region_volume;
+  b->fixedvolume = w.max_volume > 0;
+  if (w.max_volume > 0) b->maxvolume = w.max_volume;
+  b->regionattrib = w.region_attributes;
+  b->steinerleft = w.max_steiner < 0 ? -1 : (int)(w.max_steiner > 2147483647 ? 2147483647 : w.max_steiner);
+  b->nobisect = w.keep_surface;
+  b->nomergefacet = w.no_merge;
+  b->zeroindex = w.zero_based;
+  b->facesout = w.all_faces;
+  b->edgesout = w.edges;
+  b->neighout = w.neighbors;
+  b->nonodewritten = w.no_node;
+  b->noelewritten = w.no_ele;
+  b->nofacewritten = w.no_face;
+  b->nobound = w.no_markers;
+  b->noiterationnum = w.no_iteration;
+  b->diagnose = w.detect;
+  b->docheck = w.check;
+  b->quiet = w.quiet;
+  b->verbose = w.verbose;
+}
+
+// The user's tetunsuitable as idmesh's sizing callback. A C++ exception it throws must not
+// cross idmesh's frames: it is kept, the callback answers "suitable" from then on, and the
+// exception is rethrown once idmesh has returned.
+struct Sizing {
+  tetgenio::TetSizeFunc f;
+  std::exception_ptr error;
+};
+
+extern "C" int32_t call_tetunsuitable(void *user, const double *a, const double *b,
+                                      const double *c, const double *d, double volume) {
+  Sizing *s = static_cast<Sizing *>(user);
+  if (s->error) return 0;
+  try {
+    REAL p[4][3];
+    const double *q[4] = {a, b, c, d};
+    for (int i = 0; i < 4; i++)
+      for (int k = 0; k < 3; k++) p[i][k] = q[i][k];
+    REAL elen[6];
+    const int e[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+    for (int i = 0; i < 6; i++) {
+      REAL s2 = 0;
+      for (int k = 0; k < 3; k++) {
+        REAL t = p[e[i][0]][k] - p[e[i][1]][k];
+        s2 += t * t;
+      }
+      elen[i] = s2;
+    }
+    return s->f(p[0], p[1], p[2], p[3], elen, volume) ? 1 : 0;
+  } catch (...) {
+    s->error = std::current_exception();
+    return 0;
+  }
+}
+
+// Loads `in` into the mesher (indices shifted from in->firstnumber to 0).
+void load_input(Mesher &mh, const tetgenio *in, bool quiet) {
+  idm_mesher3d *m = mh.m;
+  auto check = [quiet](idm_status s) {
+    if (s != IDM_OK) fail(code_of(s), quiet);
+  };
+  if (in->numberofpoints < 0) {
+    idm_tetgen_report("numberofpoints is negative");
+    fail(10, quiet);
+  }
+  check(idm_mesher3d_add_points(m, in->pointlist, (size_t)in->numberofpoints,
+                                in->pointmarkerlist));
+  const int b = in->firstnumber;
+  std::vector<uint32_t> idx;
+  std::vector<size_t> offsets;
+  for (int f = 0; f < in->numberoffacets; f++) {
+    const tetgenio::facet &fa = in->facetlist[f];
+    idx.clear();
+    offsets.assign(1, 0);
+    for (int k = 0; k < fa.numberofpolygons; k++) {
+      const tetgenio::polygon &p = fa.polygonlist[k];
+      for (int i = 0; i < p.numberofvertices; i++) idx.push_back((uint32_t)(p.vertexlist[i] - b));
+      offsets.push_back(idx.size());
+    }
+    int marker = in->facetmarkerlist ? in->facetmarkerlist[f] : 0;
+    check(idm_mesher3d_add_facet(m, idx.data(), offsets.data(), (size_t)fa.numberofpolygons,
+                                 fa.holelist, (size_t)(fa.numberofholes > 0 ? fa.numberofholes : 0),
+                                 marker));
+  }
+  for (int h = 0; h < in->numberofholes; h++) check(idm_mesher3d_add_hole(m, &in->holelist[3 * h]));
+  for (int r = 0; r < in->numberofregions; r++) {
+    const REAL *q = &in->regionlist[5 * r];
+    check(idm_mesher3d_add_region(m, q, q[3], q[4]));
+  }
+}
+
+uint64_t edge_key(uint32_t a, uint32_t b) {
+  if (a > b) std::swap(a, b);
+  return ((uint64_t)a << 32) | b;
+}
+
+struct FaceKey {
+  uint32_t v[3];
+  bool operator==(const FaceKey &o) const {
+    return v[0] == o.v[0] && v[1] == o.v[1] && v[2] == o.v[2];
+  }
+};
+struct FaceHash {
+  size_t operator()(const FaceKey &k) const {
+    return (size_t)k.v[0] * 0x9E3779B97F4A7C15ULL ^ (size_t)k.v[1] * 0xC2B2AE3D27D4EB4FULL ^
+           (size_t)k.v[2];
+  }
+};
+FaceKey face_key(uint32_t a, uint32_t b, uint32_t c) {
+  if (a > b) std::swap(a, b);
+  if (b > c) std::swap(b, c);
+  if (a > b) std::swap(a, b);
+  return FaceKey{{a, b, c}};
+}
+
+// Corners of the face opposite corner i, and the 6 edges, of a tetrahedron.
+const int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+const int kEdge[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+
+// Fills `out` from the mesh as TetGen fills it for the switches `w`.
+void fill_output(idm_mesher3d *m, const idm_tetgen_switches &w, const tetgenio *in,
+                 tetgenio *out) {
+  auto check = [&w](idm_status s) {
+    if (s != IDM_OK) fail(code_of(s), w.quiet != 0);
+  };
+  const double *xyz;
+  const int32_t *vmark;
+  const uint32_t *tets, *nbr, *faces, *edges;
+  const int32_t *fmark, *emark;
+  const double *attr;
+  size_t nv, nt, nf, ne, na;
+  check(idm_mesher3d_vertices(m, &xyz, &nv));
+  check(idm_mesher3d_vertex_markers(m, &vmark, &nv));
+  check(idm_mesher3d_tets(m, &tets, &nt));
+  check(idm_mesher3d_neighbors(m, &nbr, &nt));
+  check(idm_mesher3d_faces(m, &faces, &fmark, &nf));
+  check(idm_mesher3d_edges(m, &edges, &emark, &ne));
+  check(idm_mesher3d_tet_attributes(m, &attr, &na));
+
+  const int b = w.zero_based ? 0 : in->firstnumber;
+  out->firstnumber = b;
+  out->mesh_dim = 3;
+  out->numberofpoints = (int)nv;
+  out->pointlist = new_array<REAL>(3 * nv);
+  for (size_t i = 0; i < 3 * nv; i++) out->pointlist[i] = xyz[i];
+  if (!w.no_markers) {
+    out->pointmarkerlist = new_array<int>(nv);
+    for (size_t i = 0; i < nv; i++) out->pointmarkerlist[i] = vmark[i];
+  }
+  out->numberoftetrahedra = (int)nt;
+  out->numberofcorners = 4;
+  out->tetrahedronlist = new_array<int>(4 * nt);
+  for (size_t i = 0; i < 4 * nt; i++) out->tetrahedronlist[i] = (int)tets[i] + b;
+  if (w.region_attributes && na == nt && nt > 0) {
+    out->numberoftetrahedronattributes = 1;
+    out->tetrahedronattributelist = new_array<REAL>(nt);
+    for (size_t i = 0; i < nt; i++) out->tetrahedronattributelist[i] = attr[i];
+  }
+  if (w.neighbors) {
+    out->neighborlist = new_array<int>(4 * nt);
+    for (size_t i = 0; i < 4 * nt; i++)
+      out->neighborlist[i] = nbr[i] == IDM_NONE ? -1 : (int)nbr[i] + b;
+  }
+
+  // Faces: the subfaces, or every face with f; each with its marker and adjacent tets.
+  std::unordered_map<FaceKey, int32_t, FaceHash> subface_marker;
+  subface_marker.reserve(nf);
+  for (size_t i = 0; i < nf; i++)
+    subface_marker[face_key(faces[3 * i], faces[3 * i + 1], faces[3 * i + 2])] = fmark[i];
+  std::vector<uint32_t> flist;   // 3 per output face
+  std::vector<int32_t> fmarks;   // 1 per output face
+  std::vector<int> fadj;         // 2 per output face: tets, -1 for none
+  std::vector<int> tet2face;     // 4 per tet (with f)
+  if (w.all_faces) {
+    tet2face.assign(4 * nt, -1);
+    for (size_t t = 0; t < nt; t++) {
+      for (int i = 0; i < 4; i++) {
+        uint32_t n = nbr[4 * t + i];
+        if (n != IDM_NONE && n < t) continue;  // listed from the smaller tet
+        int id = (int)fmarks.size();
+        uint32_t a = tets[4 * t + kFace[i][0]], bb = tets[4 * t + kFace[i][1]],
+                 c = tets[4 * t + kFace[i][2]];
+        flist.insert(flist.end(), {a, bb, c});
+        auto it = subface_marker.find(face_key(a, bb, c));
+        fmarks.push_back(it == subface_marker.end() ? 0 : it->second);
+        fadj.push_back((int)t + b);
+        fadj.push_back(n == IDM_NONE ? -1 : (int)n + b);
+        tet2face[4 * t + i] = id;
+        if (n != IDM_NONE)
+          for (int j = 0; j < 4; j++)
+            if (nbr[4 * n + j] == t) tet2face[4 * n + j] = id;
+      }
+    }
+  } else {
+    flist.assign(faces, faces + 3 * nf);
+    fmarks.assign(fmark, fmark + nf);
+    if (w.neighbors > 1) {
+      std::unordered_map<FaceKey, size_t, FaceHash> at;
+      at.reserve(nf);
+      for (size_t i = 0; i < nf; i++) at[face_key(faces[3 * i], faces[3 * i + 1], faces[3 * i + 2])] = i;
+      fadj.assign(2 * nf, -1);
+      for (size_t t = 0; t < nt; t++)
+        for (int i = 0; i < 4; i++) {
+          auto it = at.find(face_key(tets[4 * t + kFace[i][0]], tets[4 * t + kFace[i][1]],
+                                     tets[4 * t + kFace[i][2]]));
+          if (it == at.end()) continue;
+          int *slot = &fadj[2 * it->second];
+          if (slot[0] < 0) slot[0] = (int)t + b;
+          else slot[1] = (int)t + b;
+        }
+    }
+  }
+  size_t nout = fmarks.size();
+  out->numberoftrifaces = (int)nout;
+  out->trifacelist = new_array<int>(3 * nout);
+  for (size_t i = 0; i < 3 * nout; i++) out->trifacelist[i] = (int)flist[i] + b;
+  if (!w.no_markers) {
+    out->trifacemarkerlist = new_array<int>(nout);
+    for (size_t i = 0; i < nout; i++) out->trifacemarkerlist[i] = fmarks[i];
+  }
+  if (w.neighbors > 1) {
+    out->adjtetlist = new_array<int>(2 * nout);
+    for (size_t i = 0; i < 2 * nout; i++) out->adjtetlist[i] = fadj[i];
+  }
+
+  // Edges with e: every mesh edge, marked with its subsegment's marker (0 inside).
+  std::vector<int> tet2edge;
+  std::unordered_map<uint64_t, int> edge_id;
+  if (w.edges) {
+    std::unordered_map<uint64_t, int32_t> seg_marker;
+    seg_marker.reserve(ne);
+    for (size_t i = 0; i < ne; i++) seg_marker[edge_key(edges[2 * i], edges[2 * i + 1])] = emark[i];
+    std::vector<uint32_t> elist;
+    std::vector<int32_t> emarks;
+    std::vector<int> etet;
+    tet2edge.assign(6 * nt, -1);
+    edge_id.reserve(nv * 7);
+    for (size_t t = 0; t < nt; t++)
+      for (int i = 0; i < 6; i++) {
+        uint32_t a = tets[4 * t + kEdge[i][0]], c = tets[4 * t + kEdge[i][1]];
+        auto ins = edge_id.emplace(edge_key(a, c), (int)emarks.size());
+        if (ins.second) {
+          elist.insert(elist.end(), {a, c});
+          auto it = seg_marker.find(edge_key(a, c));
+          emarks.push_back(it == seg_marker.end() ? 0 : it->second);
+          etet.push_back((int)t + b);
+        }
+        tet2edge[6 * t + i] = ins.first->second;
+      }
+    size_t n = emarks.size();
+    out->numberofedges = (int)n;
+    out->edgelist = new_array<int>(2 * n);
+    for (size_t i = 0; i < 2 * n; i++) out->edgelist[i] = (int)elist[i] + b;
+    if (!w.no_markers) {
+      out->edgemarkerlist = new_array<int>(n);
+      for (size_t i = 0; i < n; i++) out->edgemarkerlist[i] = emarks[i];
+    }
+    out->edgeadjtetlist = new_array<int>(n);
+    for (size_t i = 0; i < n; i++) out->edgeadjtetlist[i] = etet[i];
+  }
+
+#ifndef IDMESH_TETGEN_LAYOUT_1_5
+  out->point2tetlist = new_array<int>(nv);
+  for (size_t i = 0; i < nv; i++) out->point2tetlist[i] = b - 1;
+  for (size_t t = 0; t < nt; t++)
+    for (int i = 0; i < 4; i++) out->point2tetlist[tets[4 * t + i]] = (int)t + b;
+  if (w.all_faces) {
+    out->tet2facelist = new_array<int>(4 * nt);
+    for (size_t i = 0; i < 4 * nt; i++) out->tet2facelist[i] = tet2face[i] + b;
+  }
+  if (w.edges) {
+    out->tet2edgelist = new_array<int>(6 * nt);
+    for (size_t i = 0; i < 6 * nt; i++) out->tet2edgelist[i] = tet2edge[i] + b;
+    out->face2edgelist = new_array<int>(3 * nout);
+    for (size_t f = 0; f < nout; f++)
+      for (int k = 0; k < 3; k++) {
+        auto it = edge_id.find(edge_key(flist[3 * f + k], flist[3 * f + (k + 1) % 3]));
+        out->face2edgelist[3 * f + k] = it == edge_id.end() ? b - 1 : it->second + b;
+      }
+  }
+#endif
+}
+
+}  // namespace
+
+tetgenbehavior::tetgenbehavior() {
+  plc = psc = refine = quality = nobisect = coarsen = weighted = 0;
+  brio_hilbert = 1;
+  incrflip = flipinsert = metric = varvolume = fixedvolume = regionattrib = 0;
+  conforming = insertaddpoints = diagnose = convex = nomergefacet = nomergevertex = 0;
+  noexact = nostaticfilter = zeroindex = facesout = edgesout = neighout = voroout = 0;
+  meditview = vtkview = nobound = nonodewritten = noelewritten = nofacewritten = 0;
+  noiterationnum = nojettison = reversetetori = docheck = quiet = verbose = 0;
+  vertexperblock = 4092;
+  tetrahedraperblock = 8188;
+  shellfaceperblock = 4092;
+  nobisect_param = 2;
+  addsteiner_algo = 1;
+  coarsen_param = weighted_param = 0;
+  fliplinklevel = flipstarsize = -1;
+  fliplinklevelinc = 1;
+  reflevel = 3;
+  optlevel = 2;
+  optscheme = 7;
+  delmaxfliplevel = 1;
+  order = 1;
+  steinerleft = -1;
+  no_sort = 0;
+  hilbert_order = 52;
+  hilbert_limit = 8;
+  brio_threshold = 64;
+  brio_ratio = 0.125;
+  facet_ang_tol = 179.9;
+  maxvolume = -1.0;
+  minratio = 2.0;
+  mindihedral = 0.0;
+  optmaxdihedral = 165.0;
+  optminsmtdihed = optminslidihed = 179.0;
+  epsilon = 1.0e-8;
+  minedgelength = 0.0;
+  coarsen_percent = 1.0;
+  object = NODES;
+  commandline[0] = infilename[0] = outfilename[0] = addinfilename[0] = bgmeshfilename[0] = '\0';
+}
+
+void tetgenbehavior::syntax() {
+  printf("tetgen [-pq__a__AYSzfennNEFBIdCQVMDJ] input_file\n"
+         "(idmesh: run `idmesh tetgen --help` for what each switch does)\n");
+}
+
+void tetgenbehavior::usage() {
+  printf("TetGen's interface on idmesh, a quality conforming Delaunay mesher.\n");
+  syntax();
+}
+
+bool tetgenbehavior::parse_commandline(int argc, char **argv) {
+  std::string text, file, line;
+  if (argc == 0) {
+    text = argv[0] ? argv[0] : "";
+    line = text;
+  } else {
+    line = argv[0] ? argv[0] : "";
+    for (int i = 1; i < argc; i++) {
+      line += ' ';
+      line += argv[i];
+      if (argv[i][0] == '-') {
+        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "-help") || !strcmp(argv[i], "--help")) {
+          usage();
+          return false;
+        }
+        text += ' ';
+        text += argv[i];
+      } else {
+        file = argv[i];
+      }
+    }
+  }
+  snprintf(commandline, sizeof commandline, "%s", line.c_str());
+  idm_tetgen_switches w;
+  if (idm_tetgen_parse_switches(text.c_str(), &w) != IDM_OK) {
+    // Q takes no number, so any Q in the switches asked for quiet.
+    if (text.find('Q') == std::string::npos) fprintf(stderr, "Error:  %s\n", idm_last_error());
+    return false;
+  }
+  apply(this, w);
+  if (argc > 0) {
+    if (file.empty()) {
+      syntax();
+      return false;
+    }
+    int32_t is_plc = 0;
+    if (idm_tetgen_resolve(file.c_str(), &w, infilename, outfilename, sizeof infilename,
+                           &is_plc) != IDM_OK) {
+      fprintf(stderr, "Error:  %s\n", idm_last_error());
+      return false;
+    }
+    plc = plc || is_plc;
+    std::string in = infilename;
+    object = has_suffix(in, ".poly") || has_suffix(in, ".smesh") ? POLY
+             : has_suffix(in, ".off")                            ? OFF
+             : has_suffix(in, ".ply")                            ? PLY
+             : has_suffix(in, ".stl")                            ? STL
+             : has_suffix(in, ".mesh")                           ? MEDIT
+                                                                 : NODES;
+  }
+  return true;
+}
+
+bool tetgenio::load_node(char *name) { return read_with(this, name, ".node"); }
+bool tetgenio::load_poly(char *name) {
+  std::string p = name;
+  if (has_suffix(p, ".poly") || has_suffix(p, ".smesh")) return read_into(this, p);
+  FILE *f = fopen((p + ".poly").c_str(), "r");
+  if (f != nullptr) {
+    fclose(f);
+    return read_into(this, p + ".poly");
+  }
+  return read_into(this, p + ".smesh");
+}
+bool tetgenio::load_off(char *name) { return read_with(this, name, ".off"); }
+bool tetgenio::load_ply(char *name) { return read_with(this, name, ".ply"); }
+bool tetgenio::load_stl(char *name) { return read_with(this, name, ".stl"); }
+bool tetgenio::load_medit(char *name, int) { return read_with(this, name, ".mesh"); }
+bool tetgenio::load_vtk(char *name) { return refuse_load("VTK", name); }
+bool tetgenio::load_edge(char *name) { return refuse_load(".edge", name); }
+bool tetgenio::load_face(char *name) { return refuse_load(".face", name); }
+bool tetgenio::load_tet(char *name) { return refuse_load(".ele", name); }
+bool tetgenio::load_vol(char *name) { return refuse_load(".vol", name); }
+bool tetgenio::load_var(char *name) { return refuse_load(".var", name); }
+bool tetgenio::load_mtr(char *name) { return refuse_load(".mtr", name); }
+bool tetgenio::load_pbc(char *name) { return refuse_load(".pbc", name); }
+
+bool tetgenio::load_plc(char *name, int object) {
+  std::string p = name;
+  for (const char *ext : {".node", ".poly", ".smesh", ".off", ".ply", ".stl", ".mesh"})
+    if (has_suffix(p, ext)) return read_into(this, p);
+  switch (object) {
+  case tetgenbehavior::NODES:
+    return load_node(name);
+  case tetgenbehavior::POLY:
+    return load_poly(name);
+  case tetgenbehavior::OFF:
+    return load_off(name);
+  case tetgenbehavior::PLY:
+    return load_ply(name);
+  case tetgenbehavior::STL:
+    return load_stl(name);
+  case tetgenbehavior::MEDIT:
+    return load_medit(name, 0);
+  default:
+    return refuse_load("VTK", name);
+  }
+}
+
+// Only the points: refining a given mesh (-r) is refused, so its elements are never used.
+bool tetgenio::load_tetmesh(char *name, int object) {
+  if (object == tetgenbehavior::MEDIT) return load_medit(name, 1);
+  return load_node(name);
+}
+
+namespace {
+FILE *open_out(const char *name, const char *ext) {
+  std::string p = std::string(name) + ext;
+  FILE *f = fopen(p.c_str(), "w");
+  if (f == nullptr) fprintf(stderr, "Error:  cannot create %s.\n", p.c_str());
+  return f;
+}
+}  // namespace
+
+void tetgenio::save_nodes(char *name) {
+  FILE *f = open_out(name, ".node");
+  if (f == nullptr) return;
+  fprintf(f, "%d  %d  %d  %d\n", numberofpoints, mesh_dim, numberofpointattributes,
+          pointmarkerlist != NULL ? 1 : 0);
+  for (int i = 0; i < numberofpoints; i++) {
+    fprintf(f, "%d  %.17g  %.17g  %.17g", i + firstnumber, pointlist[3 * i], pointlist[3 * i + 1],
+            pointlist[3 * i + 2]);
+    for (int k = 0; k < numberofpointattributes; k++)
+      fprintf(f, "  %.17g", pointattributelist[i * numberofpointattributes + k]);
+    if (pointmarkerlist != NULL) fprintf(f, "  %d", pointmarkerlist[i]);
+    fprintf(f, "\n");
+  }
+  fclose(f);
+}
+
+void tetgenio::save_elements(char *name) {
+  FILE *f = open_out(name, ".ele");
+  if (f == nullptr) return;
+  fprintf(f, "%d  %d  %d\n", numberoftetrahedra, numberofcorners, numberoftetrahedronattributes);
+  for (int i = 0; i < numberoftetrahedra; i++) {
+    fprintf(f, "%d", i + firstnumber);
+    for (int k = 0; k < numberofcorners; k++)
+      fprintf(f, "  %d", tetrahedronlist[i * numberofcorners + k]);
+    for (int k = 0; k < numberoftetrahedronattributes; k++)
+      fprintf(f, "  %.17g", tetrahedronattributelist[i * numberoftetrahedronattributes + k]);
+    fprintf(f, "\n");
+  }
+  fclose(f);
+}
+
+void tetgenio::save_faces(char *name) {
+  FILE *f = open_out(name, ".face");
+  if (f == nullptr) return;
+  fprintf(f, "%d  %d\n", numberoftrifaces, trifacemarkerlist != NULL ? 1 : 0);
+  for (int i = 0; i < numberoftrifaces; i++) {
+    fprintf(f, "%d  %d  %d  %d", i + firstnumber, trifacelist[3 * i], trifacelist[3 * i + 1],
+            trifacelist[3 * i + 2]);
+    if (trifacemarkerlist != NULL) fprintf(f, "  %d", trifacemarkerlist[i]);
+    fprintf(f, "\n");
+  }
+  fclose(f);
+}
+
+void tetgenio::save_edges(char *name) {
+  FILE *f = open_out(name, ".edge");
+  if (f == nullptr) return;
+  fprintf(f, "%d  %d\n", numberofedges, edgemarkerlist != NULL ? 1 : 0);
+  for (int i = 0; i < numberofedges; i++) {
+    fprintf(f, "%d  %d  %d", i + firstnumber, edgelist[2 * i], edgelist[2 * i + 1]);
+    if (edgemarkerlist != NULL) fprintf(f, "  %d", edgemarkerlist[i]);
+    fprintf(f, "\n");
+  }
+  fclose(f);
+}
+
+void tetgenio::save_neighbors(char *name) {
+  FILE *f = open_out(name, ".neigh");
+  if (f == nullptr) return;
+  fprintf(f, "%d  4\n", numberoftetrahedra);
+  for (int i = 0; i < numberoftetrahedra; i++)
+    fprintf(f, "%d  %d  %d  %d  %d\n", i + firstnumber, neighborlist[4 * i], neighborlist[4 * i + 1],
+            neighborlist[4 * i + 2], neighborlist[4 * i + 3]);
+  fclose(f);
+}
+
+void tetgenio::save_poly(char *name) {
+  FILE *f = open_out(name, ".poly");
+  if (f == nullptr) return;
+  fprintf(f, "0  3  0  0\n%d  %d\n", numberoffacets, facetmarkerlist != NULL ? 1 : 0);
+  for (int i = 0; i < numberoffacets; i++) {
+    const facet &fa = facetlist[i];
+    fprintf(f, "%d  %d", fa.numberofpolygons, fa.numberofholes);
+    if (facetmarkerlist != NULL) fprintf(f, "  %d", facetmarkerlist[i]);
+    fprintf(f, "\n");
+    for (int k = 0; k < fa.numberofpolygons; k++) {
+      const polygon &p = fa.polygonlist[k];
+      fprintf(f, "%d", p.numberofvertices);
+      for (int j = 0; j < p.numberofvertices; j++) fprintf(f, "  %d", p.vertexlist[j]);
+      fprintf(f, "\n");
+    }
+    for (int h = 0; h < fa.numberofholes; h++)
+      fprintf(f, "%d  %.17g  %.17g  %.17g\n", h + firstnumber, fa.holelist[3 * h],
+              fa.holelist[3 * h + 1], fa.holelist[3 * h + 2]);
+  }
+  fprintf(f, "%d\n", numberofholes);
+  for (int h = 0; h < numberofholes; h++)
+    fprintf(f, "%d  %.17g  %.17g  %.17g\n", h + firstnumber, holelist[3 * h], holelist[3 * h + 1],
+            holelist[3 * h + 2]);
+  fprintf(f, "%d\n", numberofregions);
+  for (int r = 0; r < numberofregions; r++)
+    fprintf(f, "%d  %.17g  %.17g  %.17g  %.17g  %.17g\n", r + firstnumber, regionlist[5 * r],
+            regionlist[5 * r + 1], regionlist[5 * r + 2], regionlist[5 * r + 3], regionlist[5 * r + 4]);
+  fclose(f);
+}
+
+void tetgenio::save_faces2smesh(char *name) {
+  FILE *f = open_out(name, ".smesh");
+  if (f == nullptr) return;
+  fprintf(f, "0  3  0  0\n%d  %d\n", numberoftrifaces, trifacemarkerlist != NULL ? 1 : 0);
+  for (int i = 0; i < numberoftrifaces; i++) {
+    fprintf(f, "3  %d  %d  %d", trifacelist[3 * i], trifacelist[3 * i + 1], trifacelist[3 * i + 2]);
+    if (trifacemarkerlist != NULL) fprintf(f, "  %d", trifacemarkerlist[i]);
+    fprintf(f, "\n");
+  }
+  fprintf(f, "0\n0\n");
+  fclose(f);
+}
+
+void tetrahedralize(tetgenbehavior *b, tetgenio *in, tetgenio *out, tetgenio *addin,
+                    tetgenio *bgmin) {
+  (void)addin;  // used by TetGen only with -i, which the switch parser refuses
+  (void)bgmin;  // used by TetGen only with -m, likewise refused
+  const bool quiet0 = b != nullptr && b->quiet;
+  if (b == nullptr || in == nullptr) {
+    idm_tetgen_report("tetrahedralize: the tetgenbehavior or the input is NULL");
+    fail(10, quiet0);
+  }
+  std::string text = switch_string(b);
+  idm_tetgen_switches w;
+  if (idm_tetgen_parse_switches(text.c_str(), &w) != IDM_OK) fail(10, quiet0);
+  const bool quiet = w.quiet != 0;
+  if (in->numberofpointattributes > 0) {
+    idm_tetgen_report("point attributes (pointattributelist) are not supported by idmesh");
+    fail(10, quiet);
+  }
+  if (in->numberoffacetconstraints > 0 || in->numberofsegmentconstraints > 0) {
+    idm_tetgen_report(
+        "facet and segment constraints (facetconstraintlist, segmentconstraintlist) are not "
+        "supported by idmesh");
+    fail(10, quiet);
+  }
+  try {
+    Mesher mh;
+    load_input(mh, in, quiet);
+    Sizing sizing{in->tetunsuitable, nullptr};
+    if (in->tetunsuitable != nullptr &&
+        idm_mesher3d_set_sizing(mh.m, call_tetunsuitable, &sizing) != IDM_OK)
+      fail(2, quiet);
+    int32_t code = 0;
+    idm_status s = idm_mesher3d_tetgen(mh.m, &w, (uint32_t)(in->firstnumber == 1 ? 1 : 0), &code);
+    if (sizing.error) std::rethrow_exception(sizing.error);
+    if (s == IDM_INCOMPLETE) {
+      if (!quiet) fprintf(stderr, "Warning:  %s\n", idm_last_error());
+    } else if (s != IDM_OK) {
+      fail(code, quiet);
+    }
+    if (w.detect) return;
+    if (out == nullptr) {
+      const char *stem = b->outfilename[0] != '\0' ? b->outfilename : "tetgen-tmp";
+      int base = w.zero_based ? 0 : in->firstnumber;
+      if (idm_mesher3d_write_tetgen(mh.m, stem, &w, w.plc, in->pointmarkerlist != nullptr,
+                                    (uint32_t)(base == 1 ? 1 : 0)) != IDM_OK)
+        fail(10, quiet);
+      return;
+    }
+    fill_output(mh.m, w, in, out);
+  } catch (const std::bad_alloc &) {
+    idm_tetgen_report("out of memory");
+    fail(1, quiet);
+  }
+}
+
+void tetrahedralize(char *switches, tetgenio *in, tetgenio *out, tetgenio *addin,
+                    tetgenio *bgmin) {
+  tetgenbehavior b;
+  if (!b.parse_commandline(switches)) throw 10;
+  tetrahedralize(&b, in, out, addin, bgmin);
+}

@@ -1,0 +1,791 @@
+//! The part of the C ABI that TetGen's interface needs (`idm_tetgen_*`, `idm_plc3d_*` and
+//! `idm_mesher3d_tetgen*`), used by the TetGen compatibility layer in `compat/tetgen`.
+//!
+//! * TetGen's switch strings are parsed here, by the same parser as `idmesh tetgen`
+//!   ([`crate::switches::tetgen`]), into a plain struct ([`idm_tetgen_switches`]).
+//! * Input files are read by idmesh's own readers ([`crate::io::tetgen::read_input`]) into an
+//!   [`idm_plc3d`] whose arrays are lent to the caller.
+//! * [`idm_mesher3d_tetgen`] meshes a handle as the switches ask and reports the failure with
+//!   TetGen's error code; [`idm_mesher3d_write_tetgen`] writes the files TetGen's command line
+//!   writes.
+//!
+//! The conventions of [`crate::ffi`] hold: panics caught, pointers checked, inputs copied,
+//! out-parameters written only on success (except the TetGen code of
+//! [`idm_mesher3d_tetgen`], which exists to describe failures), messages in `idm_last_error`.
+
+#![allow(non_camel_case_types)]
+#![deny(unsafe_op_in_unsafe_fn)]
+
+use std::ffi::{c_char, CStr};
+use std::path::Path;
+
+use crate::error::{Error, InputError};
+use crate::ffi::{array_ptr, check_out, guard, idm_status, input_slice, write_out, Failure};
+use crate::ffi::idm_mesher3d;
+use crate::input3d::check_plc;
+use crate::io::tetgen::read_input;
+use crate::mesh3d::{delaunay3d, tetrahedralize};
+use crate::switches::tetgen::{parse_string, renumber, resolve, write_outputs, TetSwitches};
+
+/// TetGen's switches as parsed by `idm_tetgen_parse_switches` (the letter of each field is in
+/// its comment). Booleans are `int32_t`, 0 false.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct idm_tetgen_switches {
+    /// `p`: the input is a PLC (else a point set).
+    pub plc: i32,
+    /// `q`: the radius-edge bound; 0 when there is none.
+    pub radius_edge: f64,
+    /// `a<volume>`: the global maximum volume; 0 when there is none.
+    pub max_volume: f64,
+    /// `a` alone: apply the regions' volume bounds.
+    pub region_volume: i32,
+    /// `A`: regional attributes on the tetrahedra.
+    pub region_attributes: i32,
+    /// `S<n>`: the Steiner point cap; -1 when there is none.
+    pub max_steiner: i64,
+    /// `Y`: keep the input surface.
+    pub keep_surface: i32,
+    /// `M`: do not merge coplanar facets.
+    pub no_merge: i32,
+    /// `z`: number the output from 0.
+    pub zero_based: i32,
+    /// `f`: output every face.
+    pub all_faces: i32,
+    /// `e`: output edges.
+    pub edges: i32,
+    /// `n`: 1 for neighbours, 2 (`nn`) for the face-to-tetrahedra adjacency too.
+    pub neighbors: i32,
+    /// `N`: write no `.node` file.
+    pub no_node: i32,
+    /// `E`: write no `.ele` file.
+    pub no_ele: i32,
+    /// `F`: write no `.face` file.
+    pub no_face: i32,
+    /// `B`: no boundary markers in the output.
+    pub no_markers: i32,
+    /// `I`: no iteration number in output names.
+    pub no_iteration: i32,
+    /// `d`: only check the PLC for intersections.
+    pub detect: i32,
+    /// `C`: check the final mesh.
+    pub check: i32,
+    /// `Q`: quiet.
+    pub quiet: i32,
+    /// `V`: verbose.
+    pub verbose: i32,
+}
+
+impl From<&TetSwitches> for idm_tetgen_switches {
+    fn from(s: &TetSwitches) -> Self {
+        idm_tetgen_switches {
+            plc: s.plc.into(),
+            radius_edge: s.radius_edge.unwrap_or(0.0),
+            max_volume: s.max_volume.unwrap_or(0.0),
+            region_volume: s.region_volume.into(),
+            region_attributes: s.region_attributes.into(),
+            max_steiner: s
+                .max_steiner
+                .map_or(-1, |n| i64::try_from(n).unwrap_or(i64::MAX)),
+            keep_surface: s.keep_surface.into(),
+            no_merge: s.no_merge.into(),
+            zero_based: s.zero_based.into(),
+            all_faces: s.all_faces.into(),
+            edges: s.edges.into(),
+            neighbors: i32::from(s.neighbors) + i32::from(s.face_adjacency),
+            no_node: s.no_node.into(),
+            no_ele: s.no_ele.into(),
+            no_face: s.no_face.into(),
+            no_markers: s.no_markers.into(),
+            no_iteration: s.no_iteration.into(),
+            detect: s.detect.into(),
+            check: s.check.into(),
+            quiet: s.quiet.into(),
+            verbose: s.verbose.into(),
+        }
+    }
+}
+
+impl idm_tetgen_switches {
+    /// Back to the parser's form; NaN bounds are refused.
+    fn to_switches(self) -> Result<TetSwitches, Failure> {
+        if self.radius_edge.is_nan() || self.max_volume.is_nan() {
+            return Err(Failure::invalid("a switch value (q or a) is NaN"));
+        }
+        let positive = |x: f64| (x > 0.0).then_some(x);
+        Ok(TetSwitches {
+            plc: self.plc != 0,
+            radius_edge: positive(self.radius_edge),
+            max_volume: positive(self.max_volume),
+            region_volume: self.region_volume != 0,
+            region_attributes: self.region_attributes != 0,
+            max_steiner: u64::try_from(self.max_steiner).ok(),
+            keep_surface: self.keep_surface != 0,
+            no_merge: self.no_merge != 0,
+            zero_based: self.zero_based != 0,
+            all_faces: self.all_faces != 0,
+            edges: self.edges != 0,
+            neighbors: self.neighbors > 0,
+            face_adjacency: self.neighbors > 1,
+            no_node: self.no_node != 0,
+            no_ele: self.no_ele != 0,
+            no_face: self.no_face != 0,
+            no_markers: self.no_markers != 0,
+            no_iteration: self.no_iteration != 0,
+            detect: self.detect != 0,
+            check: self.check != 0,
+            quiet: self.quiet != 0,
+            verbose: self.verbose != 0,
+        })
+    }
+}
+
+/// Borrows a NUL-terminated UTF-8 string argument.
+///
+/// # Safety
+/// `s` must be NULL (an error) or a NUL-terminated string unchanged during the call.
+unsafe fn c_str<'a>(s: *const c_char, what: &str) -> Result<&'a str, Failure> {
+    if s.is_null() {
+        return Err(Failure::null(what));
+    }
+    // SAFETY: the caller's contract.
+    unsafe { CStr::from_ptr(s) }
+        .to_str()
+        .map_err(|_| Failure::invalid(format!("argument `{what}` is not UTF-8")))
+}
+
+/// Reads the switches of `*sw` (checked pointer).
+///
+/// # Safety
+/// `sw` must be NULL (an error) or point to an `idm_tetgen_switches`.
+unsafe fn switches_of(sw: *const idm_tetgen_switches) -> Result<TetSwitches, Failure> {
+    // SAFETY: the caller's contract, checked as far as possible.
+    unsafe { input_slice(sw, 1, "sw") }?[0].to_switches()
+}
+
+/// Parses a TetGen switch string such as `"pq1.414a0.1nn"`: whitespace-separated groups, each
+/// with or without a leading `-`, exactly as `idmesh tetgen` reads its switches (implications
+/// included: `a<volume>` gives `q`, `q` and `d` give `p`). A switch idmesh does not implement
+/// is `IDM_ERR_UNSUPPORTED`, an unknown or malformed one `IDM_ERR_INVALID_ARGUMENT`; either way
+/// the message names it and `*out` is untouched.
+///
+/// # Safety
+/// `switches` must be a NUL-terminated string; `out` valid for writing the struct.
+#[no_mangle]
+pub unsafe extern "C" fn idm_tetgen_parse_switches(
+    switches: *const c_char,
+    out: *mut idm_tetgen_switches,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let text = unsafe { c_str(switches, "switches") }?;
+        check_out(out, "out")?;
+        let sw = parse_string(text).map_err(|e| {
+            let status = if e.contains("not supported") {
+                idm_status::IDM_ERR_UNSUPPORTED
+            } else {
+                idm_status::IDM_ERR_INVALID_ARGUMENT
+            };
+            Failure::new(status, e)
+        })?;
+        unsafe { out.write((&sw).into()) };
+        Ok(())
+    })
+}
+
+/// Copies `text` with its NUL into `buf` of `cap` bytes, or fails naming `what`.
+///
+/// # Safety
+/// `buf` must be valid for `cap` bytes (checked non-NULL by the caller).
+unsafe fn copy_c(text: &str, buf: *mut c_char, cap: usize, what: &str) -> Result<(), Failure> {
+    if text.len() >= cap || text.contains('\0') {
+        return Err(Failure::invalid(format!(
+            "{what} '{text}' does not fit in {cap} bytes"
+        )));
+    }
+    // SAFETY: the caller's contract; `text.len() + 1 <= cap`.
+    unsafe {
+        std::ptr::copy_nonoverlapping(text.as_ptr().cast::<c_char>(), buf, text.len());
+        buf.add(text.len()).write(0);
+    }
+    Ok(())
+}
+
+/// Resolves a file argument as `idmesh tetgen` (and TetGen's command line) does: `input` gets
+/// the file to read (a known extension names the format; without one `FILE.poly`, or
+/// `FILE.smesh` when only that exists, with `p`, else `FILE.node`), `out_stem` the output name
+/// without extension (`FILE.1`, or `FILE` with `I`), `*plc` whether the input is a PLC. Both
+/// buffers hold `cap` bytes; a name that does not fit is an error.
+///
+/// # Safety
+/// `file` a NUL-terminated string, `sw` an `idm_tetgen_switches`, `input` and `out_stem`
+/// valid for `cap` bytes, `plc` NULL or valid for a write.
+#[no_mangle]
+pub unsafe extern "C" fn idm_tetgen_resolve(
+    file: *const c_char,
+    sw: *const idm_tetgen_switches,
+    input: *mut c_char,
+    out_stem: *mut c_char,
+    cap: usize,
+    plc: *mut i32,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let file = unsafe { c_str(file, "file") }?;
+        let sw = unsafe { switches_of(sw) }?;
+        check_out(input, "input")?;
+        check_out(out_stem, "out_stem")?;
+        if !plc.is_null() {
+            check_out(plc, "plc")?;
+        }
+        let files = resolve(file, &sw);
+        if files.input.len() >= cap || files.out_stem.len() >= cap {
+            return Err(Failure::invalid(format!(
+                "file name '{}' does not fit in {cap} bytes",
+                files.input
+            )));
+        }
+        unsafe {
+            copy_c(&files.input, input, cap, "input file name")?;
+            copy_c(&files.out_stem, out_stem, cap, "output file name")?;
+            write_out(plc, files.plc.into());
+        }
+        Ok(())
+    })
+}
+
+/// An input file read by `idm_tetgen_read`, in flat arrays. Free with `idm_plc3d_free`.
+pub struct idm_plc3d {
+    base: u32,
+    points: Vec<f64>,
+    point_markers: Vec<i32>,
+    num_point_attributes: usize,
+    point_attributes: Vec<f64>,
+    facet_polygon_offsets: Vec<usize>,
+    polygon_offsets: Vec<usize>,
+    polygon_indices: Vec<u32>,
+    facet_hole_offsets: Vec<usize>,
+    facet_holes: Vec<f64>,
+    facet_markers: Vec<i32>,
+    holes: Vec<f64>,
+    regions: Vec<f64>,
+}
+
+/// The arrays of an `idm_plc3d`, lent (valid until `idm_plc3d_free`). Indices are 0-based;
+/// `base` is the numbering the file used. An empty array is NULL. Facet `f` has the polygons
+/// `facet_polygon_offsets[f] .. facet_polygon_offsets[f+1]`, polygon `k` the vertices
+/// `polygon_indices[polygon_offsets[k] .. polygon_offsets[k+1]]` and facet `f` the hole
+/// seeds `facet_holes[3*facet_hole_offsets[f] ..]` up to the next offset. Free segments of the
+/// file come last as facets with one 2-vertex polygon.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct idm_plc3d_view {
+    /// The first index of the file (0 or 1).
+    pub base: u32,
+    /// Number of points.
+    pub num_points: usize,
+    /// 3 doubles per point.
+    pub points: *const f64,
+    /// One marker per point, or NULL when the file has none.
+    pub point_markers: *const i32,
+    /// Attributes per point.
+    pub num_point_attributes: usize,
+    /// `num_point_attributes` doubles per point.
+    pub point_attributes: *const f64,
+    /// Number of facets.
+    pub num_facets: usize,
+    /// `num_facets + 1` offsets into the polygons.
+    pub facet_polygon_offsets: *const usize,
+    /// One more offset than there are polygons, into `polygon_indices`.
+    pub polygon_offsets: *const usize,
+    /// The polygons' vertex indices.
+    pub polygon_indices: *const u32,
+    /// `num_facets + 1` offsets into the facet hole seeds (counted in seeds).
+    pub facet_hole_offsets: *const usize,
+    /// 3 doubles per facet hole seed.
+    pub facet_holes: *const f64,
+    /// One marker per facet.
+    pub facet_markers: *const i32,
+    /// Number of volume hole seeds.
+    pub num_holes: usize,
+    /// 3 doubles per hole seed.
+    pub holes: *const f64,
+    /// Number of regions.
+    pub num_regions: usize,
+    /// 5 doubles per region: x, y, z, attribute, maximum volume (-1 for none).
+    pub regions: *const f64,
+}
+
+/// Reads an input file with idmesh's readers (`.node`, `.poly`, `.smesh`, `.off`, `.stl`,
+/// `.ply`, `.mesh`; the extension chooses) into `*out`. Errors name the file and line.
+///
+/// # Safety
+/// `path` a NUL-terminated string; `out` valid for writing a pointer.
+#[no_mangle]
+pub unsafe extern "C" fn idm_tetgen_read(
+    path: *const c_char,
+    out: *mut *mut idm_plc3d,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let path = unsafe { c_str(path, "path") }?;
+        check_out(out, "out")?;
+        let input = read_input(Path::new(path))
+            .map_err(|e| Failure::new(idm_status::IDM_ERR_INVALID_INPUT, e.to_string()))?;
+        let plc = &input.plc;
+        let mut p = idm_plc3d {
+            base: input.base,
+            points: plc.points.iter().flatten().copied().collect(),
+            point_markers: plc.point_markers.clone(),
+            num_point_attributes: input.num_point_attributes,
+            point_attributes: input.point_attributes.clone(),
+            facet_polygon_offsets: vec![0],
+            polygon_offsets: vec![0],
+            polygon_indices: Vec::new(),
+            facet_hole_offsets: vec![0],
+            facet_holes: Vec::new(),
+            facet_markers: Vec::new(),
+            holes: plc.holes.iter().flatten().copied().collect(),
+            regions: plc
+                .regions
+                .iter()
+                .flat_map(|r| {
+                    let [x, y, z] = r.point;
+                    [x, y, z, r.attribute, r.max_volume.unwrap_or(-1.0)]
+                })
+                .collect(),
+        };
+        let segments = plc.segments.iter().zip(
+            plc.segment_markers
+                .iter()
+                .copied()
+                .chain(std::iter::repeat(0)),
+        );
+        let facets = plc
+            .facets
+            .iter()
+            .map(|f| (f.polygons.clone(), f.holes.as_slice(), f.marker))
+            .chain(segments.map(|(s, m)| (vec![s.to_vec()], &[][..], m)));
+        for (polygons, holes, marker) in facets {
+            for poly in &polygons {
+                p.polygon_indices.extend_from_slice(poly);
+                p.polygon_offsets.push(p.polygon_indices.len());
+            }
+            p.facet_polygon_offsets.push(p.polygon_offsets.len() - 1);
+            p.facet_holes.extend(holes.iter().flatten());
+            p.facet_hole_offsets.push(p.facet_holes.len() / 3);
+            p.facet_markers.push(marker);
+        }
+        // SAFETY: checked above.
+        unsafe { out.write(Box::into_raw(Box::new(p))) };
+        Ok(())
+    })
+}
+
+/// Lends the arrays of `p` in `*out`.
+///
+/// # Safety
+/// `p` a live `idm_plc3d`; `out` valid for writing the struct.
+#[no_mangle]
+pub unsafe extern "C" fn idm_plc3d_arrays(
+    p: *const idm_plc3d,
+    out: *mut idm_plc3d_view,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let p = unsafe { p.as_ref() }.ok_or_else(|| Failure::null("p"))?;
+        check_out(out, "out")?;
+        let view = idm_plc3d_view {
+            base: p.base,
+            num_points: p.points.len() / 3,
+            points: array_ptr(&p.points),
+            point_markers: array_ptr(&p.point_markers),
+            num_point_attributes: p.num_point_attributes,
+            point_attributes: array_ptr(&p.point_attributes),
+            num_facets: p.facet_markers.len(),
+            facet_polygon_offsets: p.facet_polygon_offsets.as_ptr(),
+            polygon_offsets: p.polygon_offsets.as_ptr(),
+            polygon_indices: array_ptr(&p.polygon_indices),
+            facet_hole_offsets: p.facet_hole_offsets.as_ptr(),
+            facet_holes: array_ptr(&p.facet_holes),
+            facet_markers: array_ptr(&p.facet_markers),
+            num_holes: p.holes.len() / 3,
+            holes: array_ptr(&p.holes),
+            num_regions: p.regions.len() / 5,
+            regions: array_ptr(&p.regions),
+        };
+        unsafe { out.write(view) };
+        Ok(())
+    })
+}
+
+/// Records `message` as this thread's last error and returns `IDM_ERR_INVALID_INPUT`: how the
+/// TetGen layer reports what it refuses itself (input idmesh does not implement, such as point
+/// attributes), so that `idm_last_error` explains every failure. NULL records an empty message.
+///
+/// # Safety
+/// `message` NULL or a NUL-terminated string.
+#[no_mangle]
+pub unsafe extern "C" fn idm_tetgen_report(message: *const c_char) -> idm_status {
+    guard(|| {
+        let text = if message.is_null() {
+            ""
+        } else {
+            // SAFETY: the caller's contract.
+            unsafe { c_str(message, "message") }?
+        };
+        Err(Failure::new(idm_status::IDM_ERR_INVALID_INPUT, text))
+    })
+}
+
+/// Frees an `idm_plc3d`. NULL is a no-op.
+///
+/// # Safety
+/// `p` NULL or from `idm_tetgen_read`, not freed before.
+#[no_mangle]
+pub unsafe extern "C" fn idm_plc3d_free(p: *mut idm_plc3d) {
+    if !p.is_null() {
+        // Plain vectors: dropping them cannot panic.
+        // SAFETY: the caller's contract.
+        drop(unsafe { Box::from_raw(p) });
+    }
+}
+
+/// TetGen's error code for a failure: 3 for intersecting input, 1 for exhausted memory, 2 for
+/// a bug, 10 for any other input error.
+fn tetgen_code(e: &Error) -> i32 {
+    use InputError::*;
+    match e {
+        Error::Input(
+            CrossingSegments { .. }
+            | SelfIntersectingFacet { .. }
+            | SegmentCrossesFacet { .. }
+            | FacetsIntersect { .. }
+            | VertexOnFacet { .. }
+            | VertexOnSegment { .. },
+        ) => 3,
+        Error::Internal(m) if m.contains("out of memory") => 1,
+        Error::Internal(_) => 2,
+        _ => 10,
+    }
+}
+
+/// Meshes the handle's input as TetGen does for the switches `*sw`: with `p` the PLC is
+/// refined (`idm_mesher3d_refine` with the options the switches ask for, coplanar facets merged
+/// unless `M`), without it the points are tetrahedralized (`idm_mesher3d_delaunay`); with `d`
+/// the PLC is only checked and no mesh is made; with `C` the mesh is validated. The switches'
+/// options replace the handle's (its sizing callback is kept). `*tetgen_code` (when not NULL)
+/// gets TetGen's code for the outcome, also on failure: 0 success (including `IDM_INCOMPLETE`,
+/// a mesh stopped at the `S` cap), 3 intersecting input, 10 other input errors, 2 internal
+/// errors, 1 out of memory. Items named in input error messages are numbered from `base` (the
+/// caller's `firstnumber`).
+///
+/// # Safety
+/// `m` a live handle; `sw` an `idm_tetgen_switches`; `tetgen_code` NULL or valid for a write.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher3d_tetgen(
+    m: *mut idm_mesher3d,
+    sw: *const idm_tetgen_switches,
+    base: u32,
+    tetgen_code: *mut i32,
+) -> idm_status {
+    let mut code = 2;
+    let status = guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let m = unsafe { m.as_mut() }.ok_or_else(|| Failure::null("m"))?;
+        let sw = unsafe { switches_of(sw) }?;
+        code = 10;
+        m.mesh = None;
+        let sizing = m.opts.sizing.take();
+        m.opts = sw.options();
+        m.opts.sizing = sizing;
+        let mut fail = |e: Error| {
+            code = self::tetgen_code(&e);
+            match e {
+                Error::Input(ie) => Failure::from(Error::Input(renumber(&ie, base as usize))),
+                other => Failure::from(other),
+            }
+        };
+        if sw.detect {
+            check_plc(&m.plc).map_err(&mut fail)?;
+            code = 0;
+            return Ok(());
+        }
+        let mesh = if sw.plc {
+            tetrahedralize(&m.plc, &m.opts).map_err(&mut fail)?
+        } else {
+            let mut mesh = delaunay3d(&m.plc.points).map_err(&mut fail)?;
+            for (dst, &src) in mesh.vertex_markers.iter_mut().zip(&m.plc.point_markers) {
+                *dst = src;
+            }
+            mesh
+        };
+        if sw.check {
+            mesh.validate().map_err(|e| {
+                code = 2;
+                Failure::new(
+                    idm_status::IDM_ERR_INTERNAL,
+                    format!("mesh validation failed: {e}"),
+                )
+            })?;
+        }
+        let (complete, steiner) = (mesh.complete, mesh.steiner_points);
+        m.mesh = Some(mesh);
+        code = 0;
+        if complete {
+            Ok(())
+        } else {
+            Err(Failure::new(
+                idm_status::IDM_INCOMPLETE,
+                format!(
+                    "refinement stopped at the Steiner point cap after {steiner} Steiner \
+                     points: the mesh is valid but does not meet every bound"
+                ),
+            ))
+        }
+    });
+    if !tetgen_code.is_null() && tetgen_code.is_aligned() {
+        // SAFETY: the caller's contract.
+        unsafe {
+            tetgen_code.write(if status == idm_status::IDM_OK {
+                0
+            } else {
+                code
+            })
+        };
+    }
+    status
+}
+
+/// Writes the handle's mesh to the files TetGen's command line writes for `*sw`:
+/// `out_stem.node`, `.ele`, `.face` (unless `N`, `E`, `F`), `.edge` with `e`, `.neigh` with
+/// `n`, numbered from `base` (0 or 1). Face and edge markers are written when `plc` is
+/// nonzero, vertex markers when `node_markers` is, both unless `B`. "Writing ..." lines are
+/// printed unless `Q`.
+///
+/// # Safety
+/// `m` a live handle with a mesh; `out_stem` a NUL-terminated string; `sw` a switches struct.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher3d_write_tetgen(
+    m: *const idm_mesher3d,
+    out_stem: *const c_char,
+    sw: *const idm_tetgen_switches,
+    plc: i32,
+    node_markers: i32,
+    base: u32,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let m = unsafe { m.as_ref() }.ok_or_else(|| Failure::null("m"))?;
+        let mesh = m.mesh.as_ref().ok_or_else(|| {
+            Failure::new(
+                idm_status::IDM_ERR_NO_MESH,
+                "no mesh: call idm_mesher3d_tetgen first",
+            )
+        })?;
+        let stem = unsafe { c_str(out_stem, "out_stem") }?;
+        let sw = unsafe { switches_of(sw) }?;
+        if base > 1 {
+            return Err(Failure::invalid(format!("base is {base}, must be 0 or 1")));
+        }
+        write_outputs(&sw, stem, plc != 0, node_markers != 0, mesh, base)
+            .map_err(|e| Failure::new(idm_status::IDM_ERR_INVALID_INPUT, e))
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ffi::idm_last_error;
+    use crate::ffi::{
+        idm_mesher3d_add_facet, idm_mesher3d_add_points, idm_mesher3d_counts, idm_mesher3d_free,
+        idm_mesher3d_new,
+    };
+    use std::ffi::CString;
+    use std::ptr::{null, null_mut};
+
+    fn last_error() -> String {
+        // SAFETY: idm_last_error never returns NULL.
+        unsafe { CStr::from_ptr(idm_last_error()) }
+            .to_string_lossy()
+            .into_owned()
+    }
+
+    fn parse(text: &str) -> Result<idm_tetgen_switches, (idm_status, String)> {
+        let c = CString::new(text).unwrap();
+        let mut out = std::mem::MaybeUninit::uninit();
+        // SAFETY: valid string and out-pointer.
+        match unsafe { idm_tetgen_parse_switches(c.as_ptr(), out.as_mut_ptr()) } {
+            // SAFETY: written on success.
+            idm_status::IDM_OK => Ok(unsafe { out.assume_init() }),
+            s => Err((s, last_error())),
+        }
+    }
+
+    #[test]
+    fn switches_parse_round_trip_and_refusals_name_the_switch() {
+        let s = parse("pq1.414a0.01nnfAzQ").unwrap();
+        assert_eq!(
+            (s.plc, s.neighbors, s.all_faces, s.zero_based),
+            (1, 2, 1, 1)
+        );
+        assert_eq!(
+            (s.radius_edge, s.max_volume, s.max_steiner),
+            (1.414, 0.01, -1)
+        );
+        let Ok(back) = s.to_switches() else {
+            panic!("to_switches failed")
+        };
+        assert_eq!(idm_tetgen_switches::from(&back), s);
+        let (st, msg) = parse("pqr").unwrap_err();
+        assert_eq!(st, idm_status::IDM_ERR_UNSUPPORTED);
+        assert!(msg.contains("-r"), "{msg}");
+        let (st, msg) = parse("pq#").unwrap_err();
+        assert_eq!(st, idm_status::IDM_ERR_INVALID_ARGUMENT);
+        assert!(msg.contains("-#"), "{msg}");
+        // SAFETY: NULL is reported, not dereferenced.
+        let st = unsafe { idm_tetgen_parse_switches(null(), null_mut()) };
+        assert_eq!(st, idm_status::IDM_ERR_NULL_POINTER);
+        let msg = CString::new("point attributes are not supported").unwrap();
+        // SAFETY: a valid string.
+        let st = unsafe { idm_tetgen_report(msg.as_ptr()) };
+        assert_eq!(st, idm_status::IDM_ERR_INVALID_INPUT);
+        assert_eq!(last_error(), "point attributes are not supported");
+    }
+
+    /// A unit cube as a handle: 8 points, 6 quads with markers 1..6.
+    fn cube() -> *mut idm_mesher3d {
+        let mut m = null_mut();
+        let pts: Vec<f64> = (0..8)
+            .flat_map(|i| [(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64])
+            .collect();
+        let quads: [[u32; 4]; 6] = [
+            [0, 1, 3, 2],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 3, 7, 6],
+            [0, 2, 6, 4],
+            [1, 3, 7, 5],
+        ];
+        // SAFETY: valid arguments throughout.
+        unsafe {
+            assert_eq!(idm_mesher3d_new(&mut m), idm_status::IDM_OK);
+            assert_eq!(
+                idm_mesher3d_add_points(m, pts.as_ptr(), 8, null()),
+                idm_status::IDM_OK
+            );
+            for (k, q) in quads.iter().enumerate() {
+                let offsets = [0usize, 4];
+                let st = idm_mesher3d_add_facet(
+                    m,
+                    q.as_ptr(),
+                    offsets.as_ptr(),
+                    1,
+                    null(),
+                    0,
+                    k as i32 + 1,
+                );
+                assert_eq!(st, idm_status::IDM_OK);
+            }
+        }
+        m
+    }
+
+    #[test]
+    fn meshing_by_switches_reports_tetgen_codes() {
+        let m = cube();
+        let sw = parse("pq1.5a0.01").unwrap();
+        let mut code = -1;
+        let mut tets = 0usize;
+        // SAFETY: live handle and valid pointers.
+        unsafe {
+            assert_eq!(
+                idm_mesher3d_tetgen(m, &sw, 0, &mut code),
+                idm_status::IDM_OK
+            );
+            assert_eq!(code, 0);
+            let st = idm_mesher3d_counts(m, null_mut(), &mut tets, null_mut(), null_mut());
+            assert_eq!(st, idm_status::IDM_OK);
+            assert!(tets >= 100, "a0.01 on a unit cube: {tets} tets");
+            // A facet crossing the cube: TetGen's code 3.
+            let pts = [0.5, 0.5, -1.0, 0.5, 0.5, 2.0, 0.5, 2.0, 0.5];
+            assert_eq!(
+                idm_mesher3d_add_points(m, pts.as_ptr(), 3, null()),
+                idm_status::IDM_OK
+            );
+            let tri = [8u32, 9, 10];
+            let off = [0usize, 3];
+            let st = idm_mesher3d_add_facet(m, tri.as_ptr(), off.as_ptr(), 1, null(), 0, 9);
+            assert_eq!(st, idm_status::IDM_OK);
+            let st = idm_mesher3d_tetgen(m, &sw, 0, &mut code);
+            assert_eq!(st, idm_status::IDM_ERR_INVALID_INPUT);
+            assert_eq!(code, 3, "{}", last_error());
+            idm_mesher3d_free(m);
+        }
+    }
+
+    #[test]
+    fn files_resolve_and_read() {
+        let dir = std::env::temp_dir().join(format!("idmesh-ffi-tetgen-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let poly = dir.join("t.poly");
+        std::fs::write(
+            &poly,
+            "4 3 0 1\n1 0 0 0 5\n2 1 0 0 5\n3 0 1 0 5\n4 0 0 1 5\n\
+             4 1\n1 0 1\n3 1 2 3\n1 0 2\n3 1 2 4\n1 0 3\n3 1 3 4\n1 0 4\n3 2 3 4\n0\n1\n1 .1 .1 .1 7 -1\n",
+        )
+        .unwrap();
+        let stem = CString::new(dir.join("t").to_str().unwrap()).unwrap();
+        let sw = parse("p").unwrap();
+        let mut input = [0 as c_char; 256];
+        let mut out = [0 as c_char; 256];
+        let mut plc = 0;
+        // SAFETY: valid buffers of the stated size.
+        unsafe {
+            let st = idm_tetgen_resolve(
+                stem.as_ptr(),
+                &sw,
+                input.as_mut_ptr(),
+                out.as_mut_ptr(),
+                256,
+                &mut plc,
+            );
+            assert_eq!(st, idm_status::IDM_OK);
+            let input = CStr::from_ptr(input.as_ptr()).to_str().unwrap();
+            assert_eq!(input, poly.to_str().unwrap());
+            assert!(CStr::from_ptr(out.as_ptr())
+                .to_str()
+                .unwrap()
+                .ends_with("t.1"));
+            assert_eq!(plc, 1);
+            let st = idm_tetgen_resolve(
+                stem.as_ptr(),
+                &sw,
+                input.as_ptr() as *mut _,
+                out.as_mut_ptr(),
+                2,
+                &mut plc,
+            );
+            assert_eq!(st, idm_status::IDM_ERR_INVALID_ARGUMENT);
+            let path = CString::new(poly.to_str().unwrap()).unwrap();
+            let mut p = null_mut();
+            assert_eq!(idm_tetgen_read(path.as_ptr(), &mut p), idm_status::IDM_OK);
+            let mut v = std::mem::MaybeUninit::uninit();
+            assert_eq!(idm_plc3d_arrays(p, v.as_mut_ptr()), idm_status::IDM_OK);
+            let v = v.assume_init();
+            assert_eq!((v.base, v.num_points, v.num_facets), (1, 4, 4));
+            assert_eq!(*v.point_markers, 5);
+            assert_eq!(*v.facet_markers.add(3), 4);
+            assert_eq!(*v.polygon_offsets.add(*v.facet_polygon_offsets.add(4)), 12);
+            assert_eq!((v.num_regions, *v.regions.add(3)), (1, 7.0));
+            idm_plc3d_free(p);
+            let bad = CString::new(dir.join("none.poly").to_str().unwrap()).unwrap();
+            assert_eq!(
+                idm_tetgen_read(bad.as_ptr(), &mut p),
+                idm_status::IDM_ERR_INVALID_INPUT
+            );
+            assert!(last_error().contains("none.poly"), "{}", last_error());
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

@@ -243,6 +243,11 @@ typedef struct idm_mesher2d idm_mesher2d;
 typedef struct idm_mesher3d idm_mesher3d;
 
 /**
+ * An input file read by `idm_tetgen_read`, in flat arrays. Free with `idm_plc3d_free`.
+ */
+typedef struct idm_plc3d idm_plc3d;
+
+/**
  * Meshing options. Fill it with `idm_options2d_default` first, then change what you need, so
  * that code keeps working if fields are ever appended. Booleans are `int32_t`: 0 is false,
  * anything else true.
@@ -410,6 +415,184 @@ typedef struct idm_stats3d {
    */
   int32_t complete;
 } idm_stats3d;
+
+/**
+ * TetGen's switches as parsed by `idm_tetgen_parse_switches` (the letter of each field is in
+ * its comment). Booleans are `int32_t`, 0 false.
+ */
+typedef struct idm_tetgen_switches {
+  /**
+   * `p`: the input is a PLC (else a point set).
+   */
+  int32_t plc;
+  /**
+   * `q`: the radius-edge bound; 0 when there is none.
+   */
+  double radius_edge;
+  /**
+   * `a<volume>`: the global maximum volume; 0 when there is none.
+   */
+  double max_volume;
+  /**
+   * `a` alone: apply the regions' volume bounds.
+   */
+  int32_t region_volume;
+  /**
+   * `A`: regional attributes on the tetrahedra.
+   */
+  int32_t region_attributes;
+  /**
+   * `S<n>`: the Steiner point cap; -1 when there is none.
+   */
+  int64_t max_steiner;
+  /**
+   * `Y`: keep the input surface.
+   */
+  int32_t keep_surface;
+  /**
+   * `M`: do not merge coplanar facets.
+   */
+  int32_t no_merge;
+  /**
+   * `z`: number the output from 0.
+   */
+  int32_t zero_based;
+  /**
+   * `f`: output every face.
+   */
+  int32_t all_faces;
+  /**
+   * `e`: output edges.
+   */
+  int32_t edges;
+  /**
+   * `n`: 1 for neighbours, 2 (`nn`) for the face-to-tetrahedra adjacency too.
+   */
+  int32_t neighbors;
+  /**
+   * `N`: write no `.node` file.
+   */
+  int32_t no_node;
+  /**
+   * `E`: write no `.ele` file.
+   */
+  int32_t no_ele;
+  /**
+   * `F`: write no `.face` file.
+   */
+  int32_t no_face;
+  /**
+   * `B`: no boundary markers in the output.
+   */
+  int32_t no_markers;
+  /**
+   * `I`: no iteration number in output names.
+   */
+  int32_t no_iteration;
+  /**
+   * `d`: only check the PLC for intersections.
+   */
+  int32_t detect;
+  /**
+   * `C`: check the final mesh.
+   */
+  int32_t check;
+  /**
+   * `Q`: quiet.
+   */
+  int32_t quiet;
+  /**
+   * `V`: verbose.
+   */
+  int32_t verbose;
+  /**
+   * `k`: also write a legacy VTK file.
+   */
+  int32_t vtk;
+  /**
+   * `g`: also write a Medit `.mesh` file.
+   */
+  int32_t medit;
+} idm_tetgen_switches;
+
+/**
+ * The arrays of an `idm_plc3d`, lent (valid until `idm_plc3d_free`). Indices are 0-based;
+ * `base` is the numbering the file used. An empty array is NULL. Facet `f` has the polygons
+ * `facet_polygon_offsets[f] .. facet_polygon_offsets[f+1]`, polygon `k` the vertices
+ * `polygon_indices[polygon_offsets[k] .. polygon_offsets[k+1]]` and facet `f` the hole
+ * seeds `facet_holes[3*facet_hole_offsets[f] ..]` up to the next offset. Free segments of the
+ * file come last as facets with one 2-vertex polygon.
+ */
+typedef struct idm_plc3d_view {
+  /**
+   * The first index of the file (0 or 1).
+   */
+  uint32_t base;
+  /**
+   * Number of points.
+   */
+  size_t num_points;
+  /**
+   * 3 doubles per point.
+   */
+  const double *points;
+  /**
+   * One marker per point, or NULL when the file has none.
+   */
+  const int32_t *point_markers;
+  /**
+   * Attributes per point.
+   */
+  size_t num_point_attributes;
+  /**
+   * `num_point_attributes` doubles per point.
+   */
+  const double *point_attributes;
+  /**
+   * Number of facets.
+   */
+  size_t num_facets;
+  /**
+   * `num_facets + 1` offsets into the polygons.
+   */
+  const size_t *facet_polygon_offsets;
+  /**
+   * One more offset than there are polygons, into `polygon_indices`.
+   */
+  const size_t *polygon_offsets;
+  /**
+   * The polygons' vertex indices.
+   */
+  const uint32_t *polygon_indices;
+  /**
+   * `num_facets + 1` offsets into the facet hole seeds (counted in seeds).
+   */
+  const size_t *facet_hole_offsets;
+  /**
+   * 3 doubles per facet hole seed.
+   */
+  const double *facet_holes;
+  /**
+   * One marker per facet.
+   */
+  const int32_t *facet_markers;
+  /**
+   * Number of volume hole seeds.
+   */
+  size_t num_holes;
+  /**
+   * 3 doubles per hole seed.
+   */
+  const double *holes;
+  /**
+   * Number of regions.
+   */
+  size_t num_regions;
+  /**
+   * 5 doubles per region: x, y, z, attribute, maximum volume (-1 for none).
+   */
+  const double *regions;
+} idm_plc3d_view;
 
 /**
  * Triangle's switches, parsed (`idm_triangle_parse_switches`). Booleans are `int32_t`: 0 or 1.
@@ -1005,6 +1188,107 @@ enum idm_status idm_mesher3d_stats(const struct idm_mesher3d *m, struct idm_stat
  * `m` must be a live handle.
  */
 enum idm_status idm_mesher3d_validate(const struct idm_mesher3d *m);
+
+/**
+ * Parses a TetGen switch string such as `"pq1.414a0.1nn"`: whitespace-separated groups, each
+ * with or without a leading `-`, exactly as `idmesh tetgen` reads its switches (implications
+ * included: `a<volume>` gives `q`, `q` and `d` give `p`). A switch idmesh does not implement
+ * is `IDM_ERR_UNSUPPORTED`, an unknown or malformed one `IDM_ERR_INVALID_ARGUMENT`; either way
+ * the message names it and `*out` is untouched.
+ *
+ * # Safety
+ * `switches` must be a NUL-terminated string; `out` valid for writing the struct.
+ */
+enum idm_status idm_tetgen_parse_switches(const char *switches, struct idm_tetgen_switches *out);
+
+/**
+ * Resolves a file argument as `idmesh tetgen` (and TetGen's command line) does: `input` gets
+ * the file to read (a known extension names the format; without one `FILE.poly`, or
+ * `FILE.smesh` when only that exists, with `p`, else `FILE.node`), `out_stem` the output name
+ * without extension (`FILE.1`, or `FILE` with `I`), `*plc` whether the input is a PLC. Both
+ * buffers hold `cap` bytes; a name that does not fit is an error.
+ *
+ * # Safety
+ * `file` a NUL-terminated string, `sw` an `idm_tetgen_switches`, `input` and `out_stem`
+ * valid for `cap` bytes, `plc` NULL or valid for a write.
+ */
+enum idm_status idm_tetgen_resolve(const char *file,
+                                   const struct idm_tetgen_switches *sw,
+                                   char *input,
+                                   char *out_stem,
+                                   size_t cap,
+                                   int32_t *plc);
+
+/**
+ * Reads an input file with idmesh's readers (`.node`, `.poly`, `.smesh`, `.off`, `.stl`,
+ * `.ply`, `.mesh`; the extension chooses) into `*out`. Errors name the file and line.
+ *
+ * # Safety
+ * `path` a NUL-terminated string; `out` valid for writing a pointer.
+ */
+enum idm_status idm_tetgen_read(const char *path, struct idm_plc3d **out);
+
+/**
+ * Lends the arrays of `p` in `*out`.
+ *
+ * # Safety
+ * `p` a live `idm_plc3d`; `out` valid for writing the struct.
+ */
+enum idm_status idm_plc3d_arrays(const struct idm_plc3d *p, struct idm_plc3d_view *out);
+
+/**
+ * Records `message` as this thread's last error and returns `IDM_ERR_INVALID_INPUT`: how the
+ * TetGen layer reports what it refuses itself (input idmesh does not implement, such as point
+ * attributes), so that `idm_last_error` explains every failure. NULL records an empty message.
+ *
+ * # Safety
+ * `message` NULL or a NUL-terminated string.
+ */
+enum idm_status idm_tetgen_report(const char *message);
+
+/**
+ * Frees an `idm_plc3d`. NULL is a no-op.
+ *
+ * # Safety
+ * `p` NULL or from `idm_tetgen_read`, not freed before.
+ */
+void idm_plc3d_free(struct idm_plc3d *p);
+
+/**
+ * Meshes the handle's input as TetGen does for the switches `*sw`: with `p` the PLC is
+ * refined (`idm_mesher3d_refine` with the options the switches ask for, coplanar facets merged
+ * unless `M`), without it the points are tetrahedralized (`idm_mesher3d_delaunay`); with `d`
+ * the PLC is only checked and no mesh is made; with `C` the mesh is validated. The switches'
+ * options replace the handle's (its sizing callback is kept). `*tetgen_code` (when not NULL)
+ * gets TetGen's code for the outcome, also on failure: 0 success (including `IDM_INCOMPLETE`,
+ * a mesh stopped at the `S` cap), 3 intersecting input, 10 other input errors, 2 internal
+ * errors, 1 out of memory. Items named in input error messages are numbered from `base` (the
+ * caller's `firstnumber`).
+ *
+ * # Safety
+ * `m` a live handle; `sw` an `idm_tetgen_switches`; `tetgen_code` NULL or valid for a write.
+ */
+enum idm_status idm_mesher3d_tetgen(struct idm_mesher3d *m,
+                                    const struct idm_tetgen_switches *sw,
+                                    uint32_t base,
+                                    int32_t *tetgen_code);
+
+/**
+ * Writes the handle's mesh to the files TetGen's command line writes for `*sw`:
+ * `out_stem.node`, `.ele`, `.face` (unless `N`, `E`, `F`), `.edge` with `e`, `.neigh` with
+ * `n`, numbered from `base` (0 or 1). Face and edge markers are written when `plc` is
+ * nonzero, vertex markers when `node_markers` is, both unless `B`. "Writing ..." lines are
+ * printed unless `Q`.
+ *
+ * # Safety
+ * `m` a live handle with a mesh; `out_stem` a NUL-terminated string; `sw` a switches struct.
+ */
+enum idm_status idm_mesher3d_write_tetgen(const struct idm_mesher3d *m,
+                                          const char *out_stem,
+                                          const struct idm_tetgen_switches *sw,
+                                          int32_t plc,
+                                          int32_t node_markers,
+                                          uint32_t base);
 
 /**
  * Parses a switch string as Triangle's `triangulate()` takes it (`"pq30a0.1zQ"`; a leading

@@ -231,6 +231,8 @@ void apply(tetgenbehavior *b, const idm_tetgen_switches &w) {
   b->docheck = w.check;
   b->quiet = w.quiet;
   b->verbose = w.verbose;
+  b->vtkview = w.vtk;
+  b->meditview = w.medit;
 }
 
 // The user's tetunsuitable as idmesh's sizing callback. A C++ exception it throws must not

@@ -11,10 +11,10 @@
  * adjtetlist and edgeadjtetlist (1.5).
  *
  * Switches (one parser, shared with `idmesh tetgen`):
- *   supported: p q[ratio] a[volume] a A S[n] Y M z f e n nn N E F B I d C Q V, and D, J
+ *   supported: p q[ratio] a[volume] a A S[n] Y M z f e n nn N E F B I d C Q V k g, and D, J
  *              (accepted: idmesh output is always conforming Delaunay and keeps all vertices);
  *              q/0 (a zero minimum dihedral angle).
- *   refused:   every other letter (c r i m T X w R O o s l L b v g G K k j, p<tolerance>,
+ *   refused:   every other letter (c r i m T X w R O o s l L b v G K j, p<tolerance>,
  *              q<ratio>/<angle> with a nonzero angle): tetrahedralize throws 10 and the
  *              message (printed unless Q, and in idm_last_error()) names the switch.
  * Input refused (throw 10, message says which): point attributes, point metrics

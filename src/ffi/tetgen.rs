@@ -20,9 +20,10 @@ use std::ffi::{c_char, CStr};
 use std::path::Path;
 
 use crate::error::{Error, InputError};
-use crate::ffi::{array_ptr, check_out, guard, idm_status, input_slice, write_out, Failure};
 use crate::ffi::idm_mesher3d;
+use crate::ffi::{array_ptr, check_out, guard, idm_status, input_slice, write_out, Failure};
 use crate::input3d::check_plc;
+use crate::io::exchange::Format;
 use crate::io::tetgen::read_input;
 use crate::mesh3d::{delaunay3d, tetrahedralize};
 use crate::switches::tetgen::{parse_string, renumber, resolve, write_outputs, TetSwitches};
@@ -74,6 +75,10 @@ pub struct idm_tetgen_switches {
     pub quiet: i32,
     /// `V`: verbose.
     pub verbose: i32,
+    /// `k`: also write a legacy VTK file.
+    pub vtk: i32,
+    /// `g`: also write a Medit `.mesh` file.
+    pub medit: i32,
 }
 
 impl From<&TetSwitches> for idm_tetgen_switches {
@@ -102,6 +107,8 @@ impl From<&TetSwitches> for idm_tetgen_switches {
             check: s.check.into(),
             quiet: s.quiet.into(),
             verbose: s.verbose.into(),
+            vtk: s.formats.contains(&Format::Vtk).into(),
+            medit: s.formats.contains(&Format::Medit).into(),
         }
     }
 }
@@ -136,6 +143,11 @@ impl idm_tetgen_switches {
             check: self.check != 0,
             quiet: self.quiet != 0,
             verbose: self.verbose != 0,
+            formats: [(self.vtk, Format::Vtk), (self.medit, Format::Medit)]
+                .into_iter()
+                .filter(|&(on, _)| on != 0)
+                .map(|(_, f)| f)
+                .collect(),
         })
     }
 }

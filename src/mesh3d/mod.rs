@@ -23,7 +23,7 @@ mod validate;
 use std::fmt;
 use std::sync::Arc;
 
-pub use output::TetMesh;
+pub use output::{TetMesh, TetStats, DIHEDRAL_BINS};
 
 use crate::error::{catch_panic, Error};
 use crate::input3d::Plc;

@@ -56,7 +56,16 @@ pub struct TetStats {
     pub min_dihedral: f64,
     /// Largest dihedral angle, degrees.
     pub max_dihedral: f64,
+    /// How many tetrahedra have a dihedral angle below 5, 10 and 15 degrees.
+    pub tets_below: [usize; 3],
 }
+
+/// The bins of TetGen's `-V` dihedral-angle histogram, degrees: `[0, 5)`, `[5, 10)`, ...,
+/// `[175, 180]`.
+pub const DIHEDRAL_BINS: [f64; 18] = [
+    0.0, 5.0, 10.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80.0, 110.0, 120.0, 130.0, 140.0, 150.0, 160.0,
+    170.0, 175.0, 180.0,
+];
 
 impl TetMesh {
     /// The corners of tetrahedron `t`.
@@ -78,6 +87,7 @@ impl TetMesh {
             max_radius_edge: 0.0,
             min_dihedral: if self.tets.is_empty() { 0.0 } else { 180.0 },
             max_dihedral: 0.0,
+            tets_below: [0; 3],
         };
         for t in 0..self.tets.len() {
             let c = self.corners(t);
@@ -86,8 +96,24 @@ impl TetMesh {
             let (lo, hi) = crate::geometry::tet_dihedral_range(c);
             s.min_dihedral = s.min_dihedral.min(lo);
             s.max_dihedral = s.max_dihedral.max(hi);
+            for (k, bound) in [5.0, 10.0, 15.0].into_iter().enumerate() {
+                s.tets_below[k] += usize::from(lo < bound);
+            }
         }
         s
+    }
+
+    /// How many dihedral angles (six per tetrahedron) fall in each bin of [`DIHEDRAL_BINS`]
+    /// (17 counts; 180 degrees counts in the last bin).
+    pub fn dihedral_histogram(&self) -> [usize; 17] {
+        let mut h = [0usize; 17];
+        for t in 0..self.tets.len() {
+            for a in crate::geometry::tet_dihedrals(self.corners(t)) {
+                let bin = DIHEDRAL_BINS[1..].iter().position(|&b| a < b).unwrap_or(16);
+                h[bin] += 1;
+            }
+        }
+        h
     }
 
     /// Checks the mesh invariants exactly: positive orientation, neighbour symmetry, every

@@ -15,6 +15,7 @@ use std::io::{self, Write};
 use std::path::Path;
 
 use crate::error::InputError;
+use crate::io::exchange::{self, Format, MeshView};
 use crate::io::tetgen::{
     write_all_faces, write_edge, write_ele, write_face, write_neigh, write_node,
 };
@@ -68,6 +69,9 @@ pub struct TetSwitches {
     pub quiet: bool,
     /// `V`: print statistics.
     pub verbose: bool,
+    /// `k` (VTK), `g` (Medit), and on the command line `--format NAME`: further output files
+    /// in these exchange formats.
+    pub formats: Vec<Format>,
 }
 
 /// What the command line asks for.
@@ -100,7 +104,7 @@ fn unsupported(c: char) -> Option<&'static str> {
         's' => "piecewise smooth complexes",
         'l' | 'L' | 'b' => "choosing the insertion algorithm",
         'v' => "Voronoi diagram output",
-        'g' | 'G' | 'K' | 'k' => "Medit, Gid and VTK output",
+        'G' | 'K' => "Gid output",
         'j' => "jettisoning unused vertices",
         _ => return None,
     })
@@ -211,6 +215,8 @@ pub fn parse_group(arg: &str, sw: &mut TetSwitches) -> Result<(), String> {
             'Q' => sw.quiet = true,
             'V' => sw.verbose = true,
             'M' => sw.no_merge = true,
+            'k' => add_format(sw, Format::Vtk),
+            'g' => add_format(sw, Format::Medit),
             // What idmesh always does: conforming Delaunay output (D, with TetGen's optional
             // level), no jettisoning (J).
             'D' => {
@@ -243,6 +249,19 @@ pub fn parse_group(arg: &str, sw: &mut TetSwitches) -> Result<(), String> {
     Ok(())
 }
 
+/// Adds an exchange format to the outputs (once).
+pub fn add_format(sw: &mut TetSwitches, f: Format) {
+    if !sw.formats.contains(&f) {
+        sw.formats.push(f);
+    }
+}
+
+/// The format named by `--format NAME` (`vtk`, `vtu`, `msh`, `mesh`).
+pub fn format_option(name: &str) -> Result<Format, String> {
+    Format::from_name(name)
+        .ok_or_else(|| format!("unknown output format '{name}': expected vtk, vtu, msh or mesh"))
+}
+
 /// Applies the implications as TetGen applies them: `a<volume>` turns on `q`; `q` and `d` turn
 /// on `p`.
 pub fn finish(sw: &mut TetSwitches) {
@@ -270,9 +289,17 @@ pub fn parse_string(text: &str) -> Result<TetSwitches, String> {
 pub fn parse(args: &[String]) -> Result<Parsed, String> {
     let mut sw = TetSwitches::default();
     let mut file: Option<&String> = None;
-    for arg in args {
+    let mut it = args.iter();
+    while let Some(arg) = it.next() {
         if arg == "--help" || arg == "-h" {
             return Ok(Parsed::Help);
+        } else if let Some(name) = arg.strip_prefix("--format=") {
+            add_format(&mut sw, format_option(name)?);
+        } else if arg == "--format" {
+            let name = it
+                .next()
+                .ok_or("--format needs a value: vtk, vtu, msh or mesh")?;
+            add_format(&mut sw, format_option(name)?);
         } else if arg.starts_with("--") {
             return Err(format!(
                 "unknown option '{arg}'; try 'idmesh tetgen --help'"
@@ -305,7 +332,7 @@ pub fn say(sw: &TetSwitches, text: std::fmt::Arguments<'_>) {
 }
 
 /// The extensions of PLC files, which imply `-p`.
-pub const PLC_EXTENSIONS: [&str; 6] = ["poly", "smesh", "off", "stl", "ply", "mesh"];
+pub const PLC_EXTENSIONS: [&str; 7] = ["poly", "smesh", "off", "stl", "ply", "mesh", "msh"];
 
 /// Where to read and where to write.
 #[derive(Debug, Clone, PartialEq)]
@@ -393,7 +420,8 @@ fn write_file(
 }
 
 /// Writes the output files TetGen's command line writes for these switches: `STEM.node`,
-/// `.ele`, `.face` (unless `-N`, `-E`, `-F`), `.edge` with `-e`, `.neigh` with `-n`. As in
+/// `.ele`, `.face` (unless `-N`, `-E`, `-F`), `.edge` with `-e`, `.neigh` with `-n`, and
+/// `.vtk` (`-k`), `.mesh` (`-g`) or any `--format`. As in
 /// TetGen, vertex markers are written when the input had them (`node_markers`) and face and
 /// edge markers for PLC input, both unless `-B`.
 pub fn write_outputs(
@@ -429,6 +457,11 @@ pub fn write_outputs(
     }
     if sw.neighbors {
         write_file(sw, &name("neigh"), |f| write_neigh(f, mesh, base))?;
+    }
+    for &f in &sw.formats {
+        write_file(sw, &name(f.extension()), |file| {
+            exchange::write(file, MeshView::from(mesh), f)
+        })?;
     }
     Ok(())
 }

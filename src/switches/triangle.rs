@@ -75,6 +75,8 @@ pub struct Switches {
     pub verbose: bool,
     /// Every switch given, by name (`"o2"` and `"YY"` are names), in order of first appearance.
     pub given: Vec<&'static str>,
+    /// `--format NAME` (command line only): further output files in these exchange formats.
+    pub formats: Vec<crate::io::exchange::Format>,
 }
 
 /// What a command line asks for.
@@ -369,8 +371,23 @@ pub fn parse_library(text: &str) -> Result<Switches, String> {
 pub fn parse_command_line(args: &[String]) -> Result<Parsed, String> {
     let mut sw = Switches::default();
     let mut file: Option<&String> = None;
-    for arg in args {
-        if arg == "--help" || arg == "-h" {
+    let mut it = args.iter();
+    while let Some(arg) = it.next() {
+        let format_name = if arg == "--format" {
+            Some(
+                it.next()
+                    .ok_or("--format needs a value: vtk, vtu, msh or mesh")?
+                    .as_str(),
+            )
+        } else {
+            arg.strip_prefix("--format=")
+        };
+        if let Some(name) = format_name {
+            let f = crate::switches::tetgen::format_option(name)?;
+            if !sw.formats.contains(&f) {
+                sw.formats.push(f);
+            }
+        } else if arg == "--help" || arg == "-h" {
             return Ok(Parsed::Help);
         } else if arg.starts_with("--") {
             return Err(format!("unknown option '{arg}'"));

@@ -46,6 +46,8 @@ Switches are letters that may be grouped, e.g. -pq1.414a0.1V:
   -M          do not merge coplanar facets: by default, as in TetGen, exactly coplanar
               neighbouring facets with the same marker are meshed as one facet (the edges
               between them need not appear in the mesh); never with -Y
+  -k, -g      also write FILE.1.vtk (legacy VTK) / FILE.1.mesh (Medit), as TetGen does
+  --format F  also write FILE.1.F: vtk, vtu (VTK XML), msh (Gmsh 4.1) or mesh (Medit)
   -D -J       accepted: idmesh output is always conforming Delaunay and never drops unused
               vertices
 Numbers after q take digits and dots; after a and S also exponents, exactly as in TetGen
@@ -162,6 +164,21 @@ fn statistics(input: &TetgenInput, mesh: &TetMesh, [read, meshing, write]: [Dura
             "Dihedral angles: smallest {:.4} degrees, largest {:.4} degrees.",
             s.min_dihedral, s.max_dihedral
         );
+        println!(
+            "Tetrahedra with a dihedral angle below 5 / 10 / 15 degrees: {} / {} / {}.",
+            s.tets_below[0], s.tets_below[1], s.tets_below[2]
+        );
+        println!("Dihedral angle histogram (all six angles of every tetrahedron):");
+        let h = mesh.dihedral_histogram();
+        let bins = idmesh::mesh3d::DIHEDRAL_BINS;
+        // Two columns as TetGen prints them: the acute bins left, the obtuse ones right.
+        for row in 0..9 {
+            let cell =
+                |i: usize| format!("{:>5} - {:>3} degrees: {:>10}", bins[i], bins[i + 1], h[i]);
+            let right = cell(row + 8);
+            let left = if row < 8 { cell(row) } else { " ".repeat(31) };
+            println!("  {left}  |  {right}");
+        }
     }
     println!("Volume: {}.", s.volume);
     println!(

@@ -1,5 +1,6 @@
 //! `idmesh triangle`: Triangle's command line on top of the 2D mesher.
 
+use idmesh::io::exchange::{self, MeshView};
 use std::fs::File;
 use std::io::{self, Write};
 use std::time::{Duration, Instant};
@@ -45,6 +46,7 @@ Switches are letters that may be grouped, e.g. -pq30a0.01V:
   -N -E -P    do not write the .node / .ele / .poly file
   -Q          quiet: print only errors and warnings
   -V          verbose: print counts, angle range and timings
+  --format F  also write FILE.1.F: vtk (legacy VTK), vtu (VTK XML), msh (Gmsh 4.1), mesh (Medit)
 Numbers take digits and dots only (no exponents), exactly as in Triangle.
 ";
 
@@ -204,6 +206,11 @@ fn write_outputs(
     }
     if sw.neighbors {
         write_file(sw, &files.output("neigh"), |f| write_neigh(f, mesh, base))?;
+    }
+    for &fmt in &sw.formats {
+        write_file(sw, &files.output(fmt.extension()), |f| {
+            exchange::write(f, MeshView::from(mesh), fmt)
+        })?;
     }
     Ok(())
 }

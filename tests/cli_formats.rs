@@ -2,36 +2,14 @@
 //! `--format NAME` for both `idmesh triangle` and `idmesh tetgen`; `-V` prints TetGen's
 //! dihedral-angle histogram.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod cli_common;
 
-fn idmesh(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_idmesh"))
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .unwrap()
-}
+use cli_common::{idmesh, ok};
 
-fn workdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("idmesh-formats-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    for f in ["square_hole.poly", "3d_box_hole.poly"] {
-        let src = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("examples/data")
-            .join(f);
-        std::fs::copy(src, d.join(f)).unwrap();
-    }
-    d
-}
+const FILES: [&str; 2] = ["square_hole.poly", "3d_box_hole.poly"];
 
-fn ok(o: &Output) -> String {
-    assert!(
-        o.status.success(),
-        "stderr: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    String::from_utf8_lossy(&o.stdout).into_owned()
+fn workdir(name: &str) -> std::path::PathBuf {
+    cli_common::workdir(&format!("formats-{name}"), &FILES)
 }
 
 fn first_number(text: &str) -> usize {

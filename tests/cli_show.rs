@@ -2,35 +2,14 @@
 //! errors (a missing mesh, an unknown output type, bad view options) as one-line messages with
 //! exit status 1.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod cli_common;
 
-fn idmesh(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_idmesh"))
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .unwrap()
-}
+use cli_common::{idmesh, ok};
 
-fn workdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("idmesh-show-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    for f in ["square_hole.poly", "3d_box_hole.poly"] {
-        let src = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("examples/data")
-            .join(f);
-        std::fs::copy(src, d.join(f)).unwrap();
-    }
-    d
-}
+const FILES: [&str; 2] = ["square_hole.poly", "3d_box_hole.poly"];
 
-fn ok(o: &Output) {
-    assert!(
-        o.status.success(),
-        "stderr: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+fn workdir(name: &str) -> std::path::PathBuf {
+    cli_common::workdir(&format!("show-{name}"), &FILES)
 }
 
 #[test]

@@ -183,6 +183,11 @@ typedef enum idm_input_error {
    * `item`: a point inside segment `other`.
    */
   IDM_INPUT_VERTEX_ON_SEGMENT = 29,
+  /**
+   * `item` and `other`: the points of the first facet edge that only one facet uses (the
+   * facets enclose no volume); `part`: how many such edges there are.
+   */
+  IDM_INPUT_OPEN_SURFACE = 30,
 } idm_input_error;
 
 /**

@@ -211,6 +211,14 @@ pub enum InputError {
         /// The segment.
         segment: usize,
     },
+    /// The facets enclose no volume: the surface is open. `edges` are the first few facet
+    /// edges (point pairs) that only one facet uses; `count` is how many there are.
+    OpenSurface {
+        /// How many facet edges only one facet uses.
+        count: usize,
+        /// The first few of them, as point indices.
+        edges: Vec<[usize; 2]>,
+    },
 }
 
 /// Any failure of a meshing call.
@@ -359,6 +367,20 @@ impl fmt::Display for InputError {
             ),
             VertexOnSegment { vertex, segment } => {
                 write!(f, "point {vertex} lies inside segment {segment}")
+            }
+            OpenSurface { count, edges } => {
+                write!(f, "the facets enclose no volume: the surface is open")?;
+                if *count > 0 {
+                    let list: Vec<String> =
+                        edges.iter().map(|e| format!("{}-{}", e[0], e[1])).collect();
+                    write!(
+                        f,
+                        " ({count} facet edge{} used by one facet only, e.g. {})",
+                        if *count == 1 { " is" } else { "s are" },
+                        list.join(", ")
+                    )?;
+                }
+                Ok(())
             }
         }
     }

@@ -644,3 +644,34 @@ fn every_message_is_one_line_and_names_something() {
         assert!(s.chars().any(|c| c.is_ascii_digit()), "{s}");
     }
 }
+
+/// An open surface passes the PLC checks (facets may dangle inside a volume) but encloses no
+/// volume: meshing reports an input error naming the edges that only one facet uses, never an
+/// internal error.
+#[test]
+fn an_open_surface_names_its_open_edges() {
+    let mut plc = cube();
+    plc.facets.remove(1); // the top
+    check_plc(&plc).unwrap();
+    let err = idmesh::tetrahedralize(&plc, &idmesh::Options3::default()).unwrap_err();
+    let want = InputError::OpenSurface {
+        count: 4,
+        edges: vec![[4, 5], [4, 7], [5, 6]],
+    };
+    assert_eq!(err, Error::Input(want), "{err}");
+    let msg = err.to_string();
+    assert!(
+        msg.contains("4 facet edges are used by one facet only, e.g. 4-5, 4-7, 5-6"),
+        "{msg}"
+    );
+    // A closed surface with a dangling internal facet still meshes.
+    let mut closed = cube();
+    closed
+        .points
+        .extend([[0.5, 0.2, 0.2], [0.5, 0.8, 0.2], [0.5, 0.5, 0.8]]);
+    closed.facets.push(facet(&[&[8, 9, 10]]));
+    idmesh::tetrahedralize(&closed, &idmesh::Options3::default())
+        .unwrap()
+        .validate()
+        .unwrap();
+}

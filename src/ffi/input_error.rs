@@ -76,6 +76,9 @@ pub enum idm_input_error {
     IDM_INPUT_VERTEX_ON_FACET = 28,
     /// `item`: a point inside segment `other`.
     IDM_INPUT_VERTEX_ON_SEGMENT = 29,
+    /// `item` and `other`: the points of the first facet edge that only one facet uses (the
+    /// facets enclose no volume); `part`: how many such edges there are.
+    IDM_INPUT_OPEN_SURFACE = 30,
 }
 
 /// An input error as C sees it: its kind and its `item`, `part` and `other` indices (-1: none).
@@ -171,6 +174,10 @@ fn describe(e: &InputError) -> (idm_input_error, [i64; 3]) {
         }
         VertexOnSegment { vertex, segment } => {
             (IDM_INPUT_VERTEX_ON_SEGMENT, [ix(vertex), none, ix(segment)])
+        }
+        OpenSurface { count, ref edges } => {
+            let e = edges.first().map_or([none, none], |e| [ix(e[0]), ix(e[1])]);
+            (IDM_INPUT_OPEN_SURFACE, [e[0], ix(count), e[1]])
         }
     }
 }

@@ -1063,11 +1063,37 @@ impl Mesher<'_> {
         }
         self.classified = true;
         if !(0..ns as u32).any(|t| self.tets.alive(t) && self.region[t as usize] != OUTSIDE) {
-            return Err(Error::Internal(
-                "the facets enclose no volume (is the surface closed?)".into(),
-            ));
+            return Err(self.open_surface());
         }
         Ok(())
+    }
+
+    /// Why no tetrahedron is inside: the input facets' loop edges that only one facet uses
+    /// (an open surface, an input error), or, when there is none, an internal error.
+    fn open_surface(&self) -> Error {
+        let mut uses: crate::hash::FastMap<[u32; 2], u32> = Default::default();
+        for f in &self.plc.facets {
+            for poly in f.polygons.iter().filter(|p| p.len() >= 3) {
+                for (i, &a) in poly.iter().enumerate() {
+                    let b = poly[(i + 1) % poly.len()];
+                    *uses.entry([a.min(b), a.max(b)]).or_default() += 1;
+                }
+            }
+        }
+        let mut open: Vec<[usize; 2]> = uses
+            .into_iter()
+            .filter(|&(_, n)| n == 1)
+            .map(|(e, _)| e.map(|v| v as usize))
+            .collect();
+        if open.is_empty() {
+            return Error::Internal(
+                "the facets enclose no volume, yet every facet edge is shared".into(),
+            );
+        }
+        open.sort_unstable();
+        let count = open.len();
+        open.truncate(3);
+        Error::Input(crate::InputError::OpenSurface { count, edges: open })
     }
 
     fn seed_tet(&self, p: [f64; 3]) -> Option<u32> {

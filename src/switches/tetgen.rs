@@ -569,6 +569,10 @@ pub fn renumber(e: &InputError, b: usize) -> InputError {
             vertex: vertex + b,
             segment: segment + b,
         },
+        OpenSurface { count, edges } => OpenSurface {
+            count,
+            edges: edges.iter().map(|e| e.map(|v| v + b)).collect(),
+        },
         other => other,
     }
 }

@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 need_apt=()
-for pkg in cmake g++ pkg-config libcgal-dev libgmp-dev libmpfr-dev libtet1.5-dev tetgen python3-pip; do
+for pkg in cmake g++ pkg-config libcgal-dev libgmp-dev libmpfr-dev libtet1.5-dev tetgen python3-pip valgrind; do
   dpkg -s "$pkg" >/dev/null 2>&1 || need_apt+=("$pkg")
 done
 if [ ${#need_apt[@]} -gt 0 ]; then
@@ -38,6 +38,16 @@ fi
 grep -q '^test result: ok' /tmp/idmesh-cargo-test.log || { echo "cargo test ran no test"; exit 1; }
 echo "== CMake C/C++ harness (CGAL comparison)"
 bash scripts/ctest.sh
+echo "== C/C++ harness again under ASan + UBSan (leak checks on)"
+IDMESH_SANITIZE=address,undefined BUILD_DIR=build/asan bash scripts/ctest.sh
+echo "== C/C++ tests under valgrind (no invalid access, no definite leak)"
+for t in test_c_api test_mesher3d triangle_client_c triangle_client_cxx tetgen_client_idmesh tetgen_bad_input_idmesh; do
+  if ! (cd build/cmake/ctests && valgrind -q --error-exitcode=99 --leak-check=full \
+        --errors-for-leak-kinds=definite "./$t" >"/tmp/idmesh-valgrind-$t.log" 2>&1); then
+    echo "valgrind found errors in $t:"; tail -40 "/tmp/idmesh-valgrind-$t.log"; exit 1
+  fi
+  echo "valgrind: $t clean"
+done
 if [ -d ../shared/data/2d ]; then
   echo "== conformance against ../shared/data/2d"
   bash conformance/run2d.sh

@@ -282,6 +282,16 @@ def build_idmesh():
     return exe, None
 
 
+def build_cgal(workdir):
+    exe = os.path.join(workdir, "cgal_bench2d")
+    if os.path.exists(exe) and os.path.getmtime(exe) >= os.path.getmtime(CGAL_SRC):
+        return exe
+    log("compiling bench/cgal_bench2d.cpp with g++ -O3 (takes ~15 s)")
+    subprocess.check_call(["g++", "-O3", "-DNDEBUG", "-std=c++17", "-o", exe, CGAL_SRC,
+                           "-lgmp", "-lmpfr"])
+    return exe
+
+
 def idmesh_cli():
     """The `idmesh` command line built by build_idmesh (None if missing)."""
     target = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))

@@ -234,6 +234,120 @@ pub enum Error {
     Internal(String),
 }
 
+impl InputError {
+    /// The same error with every item index shifted by `b` (a file's numbering base, 0 or 1);
+    /// counts are kept.
+    pub fn renumbered(&self, b: usize) -> InputError {
+        use InputError::*;
+        let i = |x: u64| x + b as u64;
+        match self.clone() {
+            NonFinitePoint { point } => NonFinitePoint { point: point + b },
+            DuplicatePoint { first, second } => DuplicatePoint {
+                first: first + b,
+                second: second + b,
+            },
+            SegmentIndexOutOfRange {
+                segment,
+                index,
+                num_points,
+            } => SegmentIndexOutOfRange {
+                segment: segment + b,
+                index: i(index),
+                num_points,
+            },
+            ZeroLengthSegment { segment } => ZeroLengthSegment {
+                segment: segment + b,
+            },
+            DuplicateSegment { first, second } => DuplicateSegment {
+                first: first + b,
+                second: second + b,
+            },
+            CrossingSegments { first, second } => CrossingSegments {
+                first: first + b,
+                second: second + b,
+            },
+            NonFiniteHole { hole } => NonFiniteHole { hole: hole + b },
+            HoleOutsideDomain { hole } => HoleOutsideDomain { hole: hole + b },
+            NonFiniteRegion { region } => NonFiniteRegion { region: region + b },
+            RegionOutsideDomain { region } => RegionOutsideDomain { region: region + b },
+            CoordinateTooLarge { point } => CoordinateTooLarge { point: point + b },
+            FacetWithoutPolygons { facet } => FacetWithoutPolygons { facet: facet + b },
+            EmptyPolygon { facet, polygon } => EmptyPolygon {
+                facet: facet + b,
+                polygon: polygon + b,
+            },
+            FacetIndexOutOfRange {
+                facet,
+                polygon,
+                index,
+                num_points,
+            } => FacetIndexOutOfRange {
+                facet: facet + b,
+                polygon: polygon + b,
+                index: i(index),
+                num_points,
+            },
+            RepeatedVertexInPolygon {
+                facet,
+                polygon,
+                vertex,
+            } => RepeatedVertexInPolygon {
+                facet: facet + b,
+                polygon: polygon + b,
+                vertex: vertex + b,
+            },
+            DegeneratePolygon { facet, polygon } => DegeneratePolygon {
+                facet: facet + b,
+                polygon: polygon + b,
+            },
+            DegenerateFacet { facet } => DegenerateFacet { facet: facet + b },
+            NonPlanarFacet { facet, vertex } => NonPlanarFacet {
+                facet: facet + b,
+                vertex: vertex + b,
+            },
+            NonFiniteFacetHole { facet, hole } => NonFiniteFacetHole {
+                facet: facet + b,
+                hole: hole + b,
+            },
+            FacetHoleOffPlane { facet, hole } => FacetHoleOffPlane {
+                facet: facet + b,
+                hole: hole + b,
+            },
+            SelfIntersectingFacet {
+                facet,
+                first_polygon,
+                second_polygon,
+            } => SelfIntersectingFacet {
+                facet: facet + b,
+                first_polygon: first_polygon + b,
+                second_polygon: second_polygon + b,
+            },
+            InvalidRegion3 { region } => InvalidRegion3 { region: region + b },
+            SegmentCrossesFacet { segment, facet } => SegmentCrossesFacet {
+                segment: segment + b,
+                facet: facet + b,
+            },
+            FacetsIntersect { first, second } => FacetsIntersect {
+                first: first + b,
+                second: second + b,
+            },
+            VertexOnFacet { vertex, facet } => VertexOnFacet {
+                vertex: vertex + b,
+                facet: facet + b,
+            },
+            VertexOnSegment { vertex, segment } => VertexOnSegment {
+                vertex: vertex + b,
+                segment: segment + b,
+            },
+            OpenSurface { count, edges } => OpenSurface {
+                count,
+                edges: edges.iter().map(|e| e.map(|v| v + b)).collect(),
+            },
+            other => other,
+        }
+    }
+}
+
 impl fmt::Display for InputError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         use InputError::*;

@@ -114,49 +114,10 @@ fn describe(e: &Error, input: &TriangleInput, file: &str) -> String {
         Error::Input(ie) => {
             format!(
                 "{file}: invalid input: {}",
-                renumber(ie, input.base as usize)
+                InputError::renumbered(ie, input.base as usize)
             )
         }
         other => format!("{file}: {other}"),
-    }
-}
-
-/// Shifts the 0-based indices of an input error to the file's numbering.
-fn renumber(e: &InputError, base: usize) -> InputError {
-    use InputError::*;
-    let b = base;
-    match e.clone() {
-        NonFinitePoint { point } => NonFinitePoint { point: point + b },
-        DuplicatePoint { first, second } => DuplicatePoint {
-            first: first + b,
-            second: second + b,
-        },
-        SegmentIndexOutOfRange {
-            segment,
-            index,
-            num_points,
-        } => SegmentIndexOutOfRange {
-            segment: segment + b,
-            index: index + b as u64,
-            num_points,
-        },
-        ZeroLengthSegment { segment } => ZeroLengthSegment {
-            segment: segment + b,
-        },
-        DuplicateSegment { first, second } => DuplicateSegment {
-            first: first + b,
-            second: second + b,
-        },
-        CrossingSegments { first, second } => CrossingSegments {
-            first: first + b,
-            second: second + b,
-        },
-        NonFiniteHole { hole } => NonFiniteHole { hole: hole + b },
-        HoleOutsideDomain { hole } => HoleOutsideDomain { hole: hole + b },
-        NonFiniteRegion { region } => NonFiniteRegion { region: region + b },
-        RegionOutsideDomain { region } => RegionOutsideDomain { region: region + b },
-        CoordinateTooLarge { point } => CoordinateTooLarge { point: point + b },
-        other => other,
     }
 }
 
@@ -256,7 +217,7 @@ mod tests {
 
     #[test]
     fn renumber_shifts_every_index_but_counts() {
-        let e = renumber(
+        let e = InputError::renumbered(
             &InputError::CrossingSegments {
                 first: 0,
                 second: 4,
@@ -270,7 +231,7 @@ mod tests {
                 second: 5
             }
         );
-        let e = renumber(
+        let e = InputError::renumbered(
             &InputError::SegmentIndexOutOfRange {
                 segment: 2,
                 index: 9,
@@ -286,7 +247,7 @@ mod tests {
                 num_points: 9
             }
         );
-        let e = renumber(&InputError::TooFewPoints { count: 2 }, 1);
+        let e = InputError::renumbered(&InputError::TooFewPoints { count: 2 }, 1);
         assert_eq!(e, InputError::TooFewPoints { count: 2 });
     }
 }

@@ -48,6 +48,8 @@ for t in test_c_api test_mesher3d triangle_client_c triangle_client_cxx tetgen_c
   fi
   echo "valgrind: $t clean"
 done
+echo "== fuzz smoke run (every cargo-fuzz target, 30 s each)"
+bash scripts/fuzz_smoke.sh 30
 if [ -d ../shared/data/2d ]; then
   echo "== conformance against ../shared/data/2d"
   bash conformance/run2d.sh

@@ -645,6 +645,55 @@ fn duplicates_and_bad_input_are_reported() {
     ));
 }
 
+/// Five tets around one short edge, apexes `step` degrees apart on the unit circle: 72 closes
+/// the fan once (a Delaunay mesh); 144 winds it twice (a pentagram), although every tet is
+/// positive and every pair of neighbours lies on opposite sides of their shared face.
+fn edge_fan(step: f64) -> TetMesh {
+    let mut vertices = vec![[0.0, 0.0, -0.2], [0.0, 0.0, 0.2]];
+    for i in 0..5 {
+        let t = (step * i as f64).to_radians();
+        vertices.push([t.cos(), t.sin(), 0.0]);
+    }
+    let p = |v: u32| vertices[v as usize];
+    let flip = orient3d(p(0), p(1), p(2), p(3)) > 0.0;
+    let tets: Vec<[u32; 4]> = (0..5u32)
+        .map(|i| {
+            let (c, d) = (2 + i, 2 + (i + 1) % 5);
+            if flip {
+                [1, 0, c, d]
+            } else {
+                [0, 1, c, d]
+            }
+        })
+        .collect();
+    // Across the face without c_i lies the next tet; without c_{i+1}, the previous one.
+    let neighbors = (0..5u32)
+        .map(|i| [NONE, NONE, (i + 1) % 5, (i + 4) % 5])
+        .collect();
+    TetMesh {
+        vertex_markers: vec![0; vertices.len()],
+        num_input_vertices: vertices.len(),
+        vertices,
+        tets,
+        neighbors,
+        complete: true,
+        ..TetMesh::default()
+    }
+}
+
+#[test]
+fn validate_catches_tets_winding_twice_around_an_edge() {
+    let once = edge_fan(72.0);
+    once.validate().unwrap();
+    crate::mesh3d::validate::check_output(&once).unwrap();
+    let twice = edge_fan(144.0);
+    assert!(twice.validate().is_err());
+    match crate::mesh3d::validate::check_output(&twice) {
+        Err(Error::Internal(s)) => assert!(s.contains("around edge [0, 1]"), "{s}"),
+        other => panic!("overlap not caught: {other:?}"),
+    }
+}
+
 #[test]
 fn validate_mesh_catches_corruption() {
     let pts = random_points(60, 61);

@@ -107,14 +107,20 @@ pub fn tetrahedralize(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
         let merged = (opts.merge_coplanar && !opts.keep_surface)
             .then(|| coplanar::merge_coplanar_facets(plc))
             .flatten();
-        plc::mesh_plc(merged.as_ref().unwrap_or(plc), opts)
+        let mesh = plc::mesh_plc(merged.as_ref().unwrap_or(plc), opts)?;
+        validate::check_output(&mesh)?;
+        Ok(mesh)
     })
 }
 
 /// Delaunay tetrahedralization of a point set (TetGen without `-p`): the tetrahedra fill the
 /// convex hull; there are no facets. Duplicate points are reported as errors.
 pub fn delaunay3d(points: &[[f64; 3]]) -> Result<TetMesh, Error> {
-    catch_panic("", || delaunay::delaunay(points))
+    catch_panic("", || {
+        let mesh = delaunay::delaunay(points)?;
+        validate::check_output(&mesh)?;
+        Ok(mesh)
+    })
 }
 
 /// Rejects option values that cannot work.

@@ -163,7 +163,7 @@ const ISP_BOUND_A: f64 = (16.0 + 224.0 * EPS) * EPS;
 /// Shewchuk's stage-A error bound its sign is exact and returned; otherwise the full adaptive
 /// predicate decides. Only the sign of the result is meaningful.
 #[inline(always)]
-fn orient3d_fast(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
+pub(super) fn orient3d_fast(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
     let (adx, bdx, cdx) = (a[0] - d[0], b[0] - d[0], c[0] - d[0]);
     let (ady, bdy, cdy) = (a[1] - d[1], b[1] - d[1], c[1] - d[1]);
     let (adz, bdz, cdz) = (a[2] - d[2], b[2] - d[2], c[2] - d[2]);

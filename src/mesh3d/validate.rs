@@ -5,11 +5,10 @@
 //! empty-circumsphere check (a uniform grid around each circumsphere, widened by a bound on the
 //! circumcenter's rounding error); a vertex is reported only when exact insphere says so.
 
-use super::store::{Tets, FACE, GHOST};
+use super::store::{insphere_fast as insphere, orient3d_fast as orient3d, Tets, FACE, GHOST};
 use super::{TetMesh, NONE};
 use crate::error::Error;
 use crate::geometry::{dist2_3, tet_circumcenter};
-use crate::predicates::{insphere, orient3d};
 
 /// Checks a tet mesh exactly: index ranges and array lengths; every tet positively oriented;
 /// neighbours mutual, sharing the right three vertices, on opposite sides of them; no face in
@@ -18,6 +17,163 @@ use crate::predicates::{insphere, orient3d};
 /// error names the first offending tet, face or vertex.
 pub fn validate_mesh(mesh: &TetMesh) -> Result<(), Error> {
     check_mesh(mesh).map_err(|m| Error::Internal(format!("mesh check failed: {m}")))
+}
+
+/// The check every 3D run ends with before it hands back a mesh (issue: never return a broken
+/// mesh as a success). Exact and linear in the mesh size: the structure of [`validate_mesh`]
+/// (lengths, orientation, neighbours, each face in at most two tets, every subface a face of a
+/// tet), and every edge's tets turning around it less than once (open fan) or exactly once
+/// (closed fan), which rules out tets that overlap while each pair of neighbours looks right.
+/// It leaves out the empty-sphere test of [`validate_mesh`] (`-C`), which costs about a third
+/// of a run and checks a property the kernel keeps by construction.
+pub(crate) fn check_output(mesh: &TetMesh) -> Result<(), Error> {
+    let run = || -> Result<(), String> {
+        check_lengths(mesh)?;
+        check_tets(mesh)?;
+        let faces = FaceIndex::new(mesh)?;
+        if let Some((i, f)) = mesh.faces.iter().enumerate().find(|(_, f)| {
+            f.iter().any(|&v| v as usize >= mesh.vertices.len()) || !faces.contains(**f)
+        }) {
+            return Err(format!(
+                "subface {i} {f:?} is not a face of any tetrahedron"
+            ));
+        }
+        check_edge_winding(mesh)
+    };
+    run().map_err(|m| Error::Internal(format!("output check failed: {m}")))
+}
+
+/// Around every edge, the tets sharing it (walked through neighbours) turn exactly once when
+/// they close up, and less than once when the fan is open. Measured exactly: with `c0` the
+/// first apex, the signs of `orient3d(a, b, c0, c)` along the fan change at most once, and no
+/// later apex lies on `c0`'s half-plane (that would be a second turn). Each fan is walked once
+/// (a bit per tet edge marks it done), so the check costs O(1) per tet edge.
+fn check_edge_winding(m: &TetMesh) -> Result<(), String> {
+    // Local edge number of the pair of positions (i, j), i < j.
+    const EDGE_BIT: [[u8; 4]; 4] = [[0, 1, 2, 4], [1, 0, 8, 16], [2, 8, 0, 32], [4, 16, 32, 0]];
+    const EDGES: [[usize; 4]; 6] = [
+        [0, 1, 2, 3],
+        [0, 2, 3, 1],
+        [0, 3, 1, 2],
+        [1, 2, 0, 3],
+        [1, 3, 2, 0],
+        [2, 3, 0, 1],
+    ];
+    let p = |v: u32| m.vertices[v as usize];
+    let mut done = vec![0u8; m.tets.len()];
+    let mark = |t: u32, a: u32, b: u32, done: &mut [u8]| {
+        let tv = m.tets[t as usize];
+        if let (Some(i), Some(j)) = (
+            tv.iter().position(|&v| v == a),
+            tv.iter().position(|&v| v == b),
+        ) {
+            done[t as usize] |= EDGE_BIT[i][j];
+        }
+    };
+    // Across the face of tet `t` made of `a`, `b` and `w`: the next tet and its apex there.
+    let step = |t: u32, a: u32, b: u32, w: u32| -> Option<(u32, u32)> {
+        let tv = m.tets[t as usize];
+        let i = tv.iter().position(|&v| v != a && v != b && v != w)?;
+        let n = m.neighbors[t as usize][i];
+        if n == NONE {
+            return None;
+        }
+        let apex = *m.tets[n as usize].iter().find(|&&v| !tv.contains(&v))?;
+        Some((n, apex))
+    };
+    let budget = m.tets.len() + 1;
+    let (mut apexes, mut back): (Vec<u32>, Vec<u32>) = (Vec::new(), Vec::new());
+    for t0 in 0..m.tets.len() as u32 {
+        let tv = m.tets[t0 as usize];
+        for (k, e) in EDGES.iter().enumerate() {
+            if done[t0 as usize] & (1 << k) != 0 {
+                continue;
+            }
+            let [a, b, c, d] = e.map(|k| tv[k]);
+            mark(t0, a, b, &mut done);
+            // Forward from t0 across a-b-c; if the fan opens there, backward across a-b-d.
+            apexes.clear();
+            back.clear();
+            let (mut t, mut w) = (t0, c);
+            let mut closed = false;
+            while let Some((n, apex)) = step(t, a, b, w) {
+                if n == t0 {
+                    closed = true;
+                    break;
+                }
+                if apexes.len() > budget {
+                    return Err(format!("the tets around edge [{a}, {b}] do not close up"));
+                }
+                mark(n, a, b, &mut done);
+                apexes.push(apex);
+                (t, w) = (n, apex);
+            }
+            if !closed {
+                (t, w) = (t0, d);
+                while let Some((n, apex)) = step(t, a, b, w) {
+                    if back.len() > budget {
+                        return Err(format!("the tets around edge [{a}, {b}] do not close up"));
+                    }
+                    mark(n, a, b, &mut done);
+                    back.push(apex);
+                    (t, w) = (n, apex);
+                }
+            }
+            // Turning order: the backward apexes reversed, d, c, the forward apexes (closed:
+            // the last forward apex is d again and is dropped).
+            if closed {
+                apexes.pop();
+            }
+            back.reverse();
+            back.extend([d, c]);
+            back.extend_from_slice(&apexes);
+            if let Err(why) = turns_once(a, b, &back, closed, &p) {
+                return Err(format!(
+                    "the tets around edge [{a}, {b}] (apexes {back:?}) {why}"
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// See [`check_edge_winding`]: `apexes` in turning order around the line a-b.
+fn turns_once(
+    a: u32,
+    b: u32,
+    apexes: &[u32],
+    closed: bool,
+    p: &impl Fn(u32) -> [f64; 3],
+) -> Result<(), &'static str> {
+    let (pa, pb) = (p(a), p(b));
+    let c0 = p(apexes[0]);
+    // Any plane through a-b other than c0's separates c0's half-plane from the opposite one;
+    // the second apex spans one (its tet with a, b, c0 is not flat).
+    let c1 = p(apexes[1]);
+    let side0 = orient3d(pa, pb, c1, c0);
+    let mut last = 0.0f64;
+    let mut changes = 0;
+    for &w in &apexes[1..] {
+        let q = p(w);
+        let s = orient3d(pa, pb, c0, q);
+        if s == 0.0 {
+            if orient3d(pa, pb, c1, q) * side0 > 0.0 {
+                return Err("turn more than once (an apex returns to the first one's side)");
+            }
+            continue;
+        }
+        if last != 0.0 && (s > 0.0) != (last > 0.0) {
+            changes += 1;
+        }
+        last = s;
+    }
+    if changes > 1 {
+        return Err("turn more than once");
+    }
+    if closed && changes == 0 {
+        return Err("close up without going around the edge");
+    }
+    Ok(())
 }
 
 fn check_mesh(m: &TetMesh) -> Result<(), String> {
@@ -44,6 +200,7 @@ fn check_mesh(m: &TetMesh) -> Result<(), String> {
             }
         }
     }
+    check_edge_winding(m)?;
     if m.surface_kept {
         // Not Delaunay next to the surface (see `TetMesh::surface_kept`).
         return Ok(());
@@ -126,6 +283,10 @@ fn check_tets(m: &TetMesh) -> Result<(), String> {
                 ));
             }
             // The face is outward for t (t's apex below); n's apex must lie strictly above.
+            // (Tested once per face, from the lower-numbered tet.)
+            if (n as usize) < t {
+                continue;
+            }
             let [x, y, z] = face.map(p);
             if orient3d(x, y, z, p(other[j])) >= 0.0 {
                 return Err(format!(

@@ -1,0 +1,134 @@
+//! The structure-aware fuzz campaign of issue 14, as a counted, reproducible run: `runs`
+//! cases drawn from a seeded generator, each a seed shape mutated as in
+//! `fuzz/fuzz_targets/mutate.rs` (the same code as the cargo-fuzz targets), meshed with a
+//! Steiner budget, its result classified: a mesh that validates (complete or with the budget
+//! reached), an input error, an internal error (grouped by message), a mesh returned as a
+//! success that fails `validate()`, or a hang (no answer within the time limit; the campaign
+//! then stops, as the stuck thread cannot be killed). Each failing case is printed so that it
+//! can become a regression test.
+//!
+//! ```text
+//! cargo run --release --example fuzz_campaign -- 3d 1 10000 [time-limit-s]
+//! ```
+
+#[path = "../fuzz/fuzz_targets/mutate.rs"]
+mod mutate;
+
+use arbitrary::{Arbitrary, Unstructured};
+use mutate::{Case2, Case3};
+use std::collections::BTreeMap;
+use std::sync::mpsc;
+use std::time::Duration;
+
+/// SplitMix64: a small, well-mixed generator, so a campaign is reproducible from its seed.
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+}
+
+/// What one case came to.
+fn outcome<M>(
+    r: Result<M, idmesh::Error>,
+    check: impl Fn(&M) -> Result<(), String>,
+    complete: impl Fn(&M) -> bool,
+) -> String {
+    match r {
+        Ok(m) => match check(&m) {
+            Ok(()) if complete(&m) => "ok".into(),
+            Ok(()) => "ok, Steiner budget reached".into(),
+            Err(e) => format!("WRONG MESH returned as a success: {e}"),
+        },
+        Err(idmesh::Error::Internal(m)) => {
+            // Group by the message's words, not its numbers.
+            let words: String = m
+                .split(|c: char| c.is_ascii_digit() || c == '[' || c == '(')
+                .next()
+                .unwrap_or("")
+                .chars()
+                .take(70)
+                .collect();
+            format!("INTERNAL: {}", words.trim())
+        }
+        Err(idmesh::Error::Input(_)) => "input error".into(),
+        Err(e) => format!(
+            "other error: {}",
+            e.to_string().chars().take(60).collect::<String>()
+        ),
+    }
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if args.len() < 4 {
+        eprintln!("usage: fuzz_campaign 2d|3d SEED RUNS [TIME-LIMIT-S]");
+        std::process::exit(2);
+    }
+    let mode = args[1].clone();
+    let seed: u64 = args[2].parse().expect("SEED");
+    let runs: u64 = args[3].parse().expect("RUNS");
+    let limit = Duration::from_secs(args.get(4).map_or(20, |s| s.parse().expect("TIME-LIMIT-S")));
+    let mut rng = Rng(seed);
+    let mut counts: BTreeMap<String, u64> = BTreeMap::new();
+    let mut bytes = vec![0u8; 256];
+    for run in 0..runs {
+        for b in bytes.iter_mut() {
+            *b = rng.next() as u8;
+        }
+        let mut u = Unstructured::new(&bytes);
+        let (tx, rx) = mpsc::channel();
+        let desc;
+        if mode == "2d" {
+            let Ok(mut case) = Case2::arbitrary(&mut u) else {
+                continue;
+            };
+            case.muts.truncate(6);
+            desc = format!("{case:?}");
+            std::thread::spawn(move || {
+                let check = |m: &idmesh::TriMesh| {
+                    if case.no_boundary_steiner {
+                        m.validate_constrained()
+                    } else {
+                        m.validate().map_err(|e| e.to_string())
+                    }
+                };
+                let _ = tx.send(outcome(case.run(), check, |m| m.complete));
+            });
+        } else {
+            let Ok(mut case) = Case3::arbitrary(&mut u) else {
+                continue;
+            };
+            case.muts.truncate(6);
+            desc = format!("{case:?}");
+            std::thread::spawn(move || {
+                let check = |m: &idmesh::TetMesh| m.validate().map_err(|e| e.to_string());
+                let _ = tx.send(outcome(case.run(), check, |m| m.complete));
+            });
+        }
+        let got = match rx.recv_timeout(limit) {
+            Ok(o) => o,
+            Err(_) => format!("HANG (no answer in {} s)", limit.as_secs()),
+        };
+        if !got.starts_with("ok") && got != "input error" {
+            println!("run {run}: {got}\n  case: {desc}");
+        }
+        let hang = got.starts_with("HANG");
+        *counts.entry(got).or_default() += 1;
+        if hang {
+            break;
+        }
+    }
+    println!(
+        "\n{mode} campaign, seed {seed}, {} cases:",
+        counts.values().sum::<u64>()
+    );
+    for (k, v) in &counts {
+        println!("{v:>8}  {k}");
+    }
+    std::process::exit(0);
+}

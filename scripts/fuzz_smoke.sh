@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# A short run of every cargo-fuzz target (fuzz/fuzz_targets), about SECONDS seconds each
+# (default 60): the readers, the structure-aware 2D and 3D mutators, the C API call sequences.
+# Any crash, hidden panic, mesh returned as a success that fails validate(), or input that
+# runs past the time limit fails the run and leaves the input under fuzz/artifacts/.
+# Installs cargo-fuzz (and uses the nightly toolchain) when missing.
+set -euo pipefail
+cd "$(dirname "$0")/../fuzz"
+SECONDS_PER_TARGET="${1:-60}"
+if ! cargo +nightly --version >/dev/null 2>&1; then
+  echo "== fuzz smoke skipped: no nightly toolchain"; exit 0
+fi
+if ! cargo fuzz --version >/dev/null 2>&1; then
+  echo "== installing cargo-fuzz"
+  cargo install -q cargo-fuzz
+fi
+cargo +nightly fuzz build -O 2>&1 | grep -E '^(error|warning)' -A5 || true
+for t in $(cargo +nightly fuzz list); do
+  mkdir -p "corpus/$t"
+  # A private copy of the corpus: the committed seeds stay as they are.
+  work=$(mktemp -d)
+  cp -r "corpus/$t/." "$work/"
+  echo "== fuzz $t (${SECONDS_PER_TARGET} s)"
+  if ! cargo +nightly fuzz run -O "$t" "$work" -- -max_total_time="$SECONDS_PER_TARGET" \
+      -timeout=20 -rss_limit_mb=4096 -max_len=4096 -print_final_stats=0 >"$work.log" 2>&1; then
+    tail -40 "$work.log"
+    echo "fuzz target $t failed (input under fuzz/artifacts/$t)"; exit 1
+  fi
+  grep -E '^Done [0-9]+ runs' "$work.log" || true
+  rm -rf "$work" "$work.log"
+done

@@ -25,6 +25,7 @@ use crate::error::Error;
 use crate::geometry::{tet_circumcenter, tet_radius_edge, tet_volume, tri_circumcenter3};
 use crate::input3d::Plc;
 use crate::predicates::{in_diametral_ball_seg3, in_diametral_ball_tri, orient3d};
+use crate::progress::{stage, tick, Stage};
 
 /// Refinement stops (with an error) before the kernel's slot space runs out.
 const MAX_TET_SLOTS: usize = (1 << 30) - 1024;
@@ -180,7 +181,9 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
         counts: Counts::default(),
     };
     m.sharp = Sharp::find(plc, &m.feat, opts.radius_edge);
+    stage(Stage::Delaunay, || (0, n as u64))?;
     m.insert_input_points()?;
+    stage(Stage::Boundary, || (0, m.queued()))?;
     // Every subsegment and subface starts on the queue; taking one checks it.
     let mut keys: Vec<u64> = m.feat.subsegs.keys().copied().collect();
     keys.sort_unstable();
@@ -194,6 +197,7 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
         m.keep_input_surface()?;
     }
     if m.wants_quality() {
+        stage(Stage::Refining, || (m.steiner, m.steiner))?;
         for t in 0..m.tets.num_slots() as u32 {
             m.maybe_queue_tet(t);
         }
@@ -213,6 +217,7 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
     // cannot be left out of the output like those touching the outside: split its subface
     // (the facet point at its circumcentre removes it) and refine again.
     if !m.opts.keep_surface {
+        stage(Stage::Slivers, || (m.steiner, m.steiner))?;
         for _round in 0..8 {
             let faces = m.interior_flat_slivers();
             if faces.is_empty() || !m.complete {
@@ -224,6 +229,7 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
             m.run()?;
         }
     }
+    stage(Stage::Output, || (0, m.tets.num_slots() as u64))?;
     m.output(plc)
 }
 
@@ -283,7 +289,8 @@ impl Mesher<'_> {
         }
         self.tets.init(first[0], first[1], first[2], first[3]);
         self.hint = self.tets.vertex_tet(first[0]);
-        for &v in &order {
+        for (k, &v) in order.iter().enumerate() {
+            tick(|| (k as u64, order.len() as u64))?;
             if first.contains(&v) {
                 continue;
             }
@@ -479,6 +486,11 @@ impl Mesher<'_> {
         (0..3).all(|k| self.bbox[0][k] <= p[k] && p[k] <= self.bbox[1][k])
     }
 
+    /// Subsegments, subfaces and tets waiting on the work queue (the progress estimate).
+    fn queued(&self) -> u64 {
+        (self.seg_q.len() + self.face_q.len() + self.tet_q.len()) as u64
+    }
+
     fn cap_reached(&self) -> bool {
         self.opts.max_steiner.is_some_and(|c| self.steiner >= c)
     }
@@ -487,6 +499,7 @@ impl Mesher<'_> {
     fn run(&mut self) -> Result<(), Error> {
         let budget = 1u64 << 40;
         for it in 0..budget {
+            tick(|| (self.steiner, self.steiner + self.queued()))?;
             if self.opts.verbose && it % (1 << 12) == (1 << 12) - 1 {
                 let c = &self.counts;
                 eprintln!(
@@ -1202,6 +1215,7 @@ impl Mesher<'_> {
         let mut tets = Vec::new();
         let mut slots = Vec::new();
         for t in 0..ns as u32 {
+            tick(|| (t as u64, ns as u64))?;
             if self.tets.alive(t)
                 && !self.tets.is_ghost(t)
                 && self.region[t as usize] != OUTSIDE

@@ -229,7 +229,7 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
             m.run()?;
         }
     }
-    stage(Stage::Output, || (0, m.tets.num_slots() as u64))?;
+    stage(Stage::Output, || (0, 4 * m.tets.num_slots() as u64))?;
     m.output(plc)
 }
 
@@ -1028,6 +1028,7 @@ impl Mesher<'_> {
         self.unknown.clear();
         let mut changed = 0;
         for t in 0..self.tets.num_slots() as u32 {
+            tick(|| (self.steiner, self.steiner))?;
             if self.tets.alive(t) && old.get(t as usize) != Some(&self.region[t as usize]) {
                 changed += 1;
                 self.maybe_queue_tet(t);
@@ -1053,7 +1054,7 @@ impl Mesher<'_> {
                 self.region[g as usize] = OUTSIDE;
             }
         } else {
-            self.flood(&ghosts, OUTSIDE, &mut seen, &mut stack);
+            self.flood(&ghosts, OUTSIDE, &mut seen, &mut stack)?;
         }
         for (i, h) in plc.holes.iter().enumerate() {
             let t =
@@ -1061,12 +1062,12 @@ impl Mesher<'_> {
                     .ok_or(Error::Input(crate::InputError::HoleOutsideDomain {
                         hole: i,
                     }))?;
-            self.flood(&[t], OUTSIDE, &mut seen, &mut stack);
+            self.flood(&[t], OUTSIDE, &mut seen, &mut stack)?;
         }
         for (i, r) in plc.regions.iter().enumerate() {
             if let Some(t) = self.seed_tet(r.point) {
                 if !seen[t as usize] {
-                    self.flood(&[t], i as u32 + 1, &mut seen, &mut stack);
+                    self.flood(&[t], i as u32 + 1, &mut seen, &mut stack)?;
                 }
             } else {
                 return Err(Error::Input(crate::InputError::RegionOutsideDomain {
@@ -1122,7 +1123,13 @@ impl Mesher<'_> {
         }
     }
 
-    fn flood(&mut self, seeds: &[u32], reg: u32, seen: &mut [bool], stack: &mut Vec<u32>) {
+    fn flood(
+        &mut self,
+        seeds: &[u32],
+        reg: u32,
+        seen: &mut [bool],
+        stack: &mut Vec<u32>,
+    ) -> Result<(), Error> {
         stack.clear();
         for &s in seeds {
             if !seen[s as usize] {
@@ -1131,6 +1138,7 @@ impl Mesher<'_> {
             }
         }
         while let Some(t) = stack.pop() {
+            tick(|| (self.steiner, self.steiner))?;
             self.region[t as usize] = reg;
             let vs = self.tets.verts(t);
             for f in 0..4 {
@@ -1146,6 +1154,7 @@ impl Mesher<'_> {
                 stack.push(n);
             }
         }
+        Ok(())
     }
 
     /// Rounding slivers at the domain's boundary, which the output leaves out: tets inside
@@ -1214,8 +1223,10 @@ impl Mesher<'_> {
         let mut index = vec![NONE; ns];
         let mut tets = Vec::new();
         let mut slots = Vec::new();
+        // Progress: four passes over at most `ns` tets.
+        let work = |pass: usize, i: usize| ((pass * ns + i) as u64, 4 * ns as u64);
         for t in 0..ns as u32 {
-            tick(|| (t as u64, ns as u64))?;
+            tick(|| work(0, t as usize))?;
             if self.tets.alive(t)
                 && !self.tets.is_ghost(t)
                 && self.region[t as usize] != OUTSIDE
@@ -1234,6 +1245,7 @@ impl Mesher<'_> {
         }
         let mut neighbors = Vec::with_capacity(tets.len());
         for (i, &t) in slots.iter().enumerate() {
+            tick(|| work(1, i))?;
             let mut nb = [NONE; 4];
             for (k, &x) in tets[i].iter().enumerate() {
                 // The face opposite x in the output order is the kernel face opposite x.
@@ -1263,7 +1275,8 @@ impl Mesher<'_> {
         // part of the mesh): the subfaces among the faces of the output tets; and the boundary
         // faces that a dropped rounding sliver uncovered, which lie in its facet.
         let mut faces: Vec<([u32; 3], u32)> = Vec::new();
-        for &t in &slots {
+        for (i, &t) in slots.iter().enumerate() {
+            tick(|| work(2, i))?;
             let vs = self.tets.verts(t);
             for f in 0..4 {
                 let fv = face_of(vs, f);
@@ -1312,7 +1325,8 @@ impl Mesher<'_> {
         }
         let mut vertices: Vec<[f64; 3]> = self.pts[..self.num_input].to_vec();
         let mut markers: Vec<i32> = vertex_markers[..self.num_input].to_vec();
-        for t in &tets {
+        for (i, t) in tets.iter().enumerate() {
+            tick(|| work(3, i))?;
             for &v in t {
                 if new_id[v as usize] == NONE {
                     new_id[v as usize] = vertices.len() as u32;

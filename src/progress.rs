@@ -90,7 +90,7 @@ pub type ProgressFn = Arc<dyn Fn(Stage, u64, u64) -> ControlFlow<()> + Send + Sy
 pub const MIN_INTERVAL: Duration = Duration::from_millis(20);
 
 /// How many steps [`tick`] lets pass between two looks at the clock.
-pub const CHECK_EVERY: u32 = 128;
+pub const CHECK_EVERY: u32 = 32;
 
 /// The callback of the run in progress on this thread, and where it stands.
 struct Active {

@@ -301,9 +301,12 @@ fn longest_gap_between_reports_on_a_million_tet_run() {
     let (plc, plain) = cube(1e-6);
     let times: Arc<Mutex<Vec<(Instant, Stage)>>> = Arc::default();
     let t = times.clone();
+    let works: Arc<Mutex<Vec<(u64, u64)>>> = Arc::default();
+    let w = works.clone();
     let opts = Options3 {
-        progress: Some(Arc::new(move |s, _, _| {
+        progress: Some(Arc::new(move |s, done, est| {
             t.lock().unwrap().push((Instant::now(), s));
+            w.lock().unwrap().push((done, est));
             ControlFlow::Continue(())
         })),
         ..plain
@@ -324,6 +327,12 @@ fn longest_gap_between_reports_on_a_million_tet_run() {
         "longest gaps (gap, after a report in, report number): {:?}",
         &gaps[..4]
     );
+    let works = works.lock().unwrap().clone();
+    for &(_, _, i) in &gaps[..4] {
+        // Report i (0 is the start) and the next, as (done, estimate).
+        let at = |k: usize| k.checked_sub(1).and_then(|k| works.get(k).copied());
+        eprintln!("  gap after report {i}: {:?} -> {:?}", at(i), at(i + 1));
+    }
     let (gap, stage, _) = gaps[0];
     eprintln!(
         "{} tets in {:?}, {} reports; longest gap {gap:?} (after a report in stage {stage})",

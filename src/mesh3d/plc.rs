@@ -980,6 +980,7 @@ impl Mesher<'_> {
             let mut found = None;
             let mut agree = true;
             while let Some(t) = stack.pop() {
+                tick(|| (self.steiner, self.steiner + self.queued()))?;
                 comp.push(t);
                 let vs = self.tets.verts(t);
                 for f in 0..4 {

@@ -22,8 +22,18 @@
  *   - A handle may be used from any thread, but by one thread at a time. Distinct handles
  *     are independent and may be used concurrently; the library has no global state besides
  *     the thread-local error message.
- *   - The sizing callback runs only inside idm_mesherNd_refine, on the calling thread, and
- *     receives `user` untouched: making `user` safe to use there is the caller's contract.
+ *   - The sizing and progress callbacks run only inside idm_mesherNd_refine (and
+ *     idm_mesher3d_delaunay), on the calling thread, and receive `user` untouched: making
+ *     `user` safe to use there is the caller's contract.
+ *
+ * Progress and cancel
+ *   - idm_mesherNd_set_progress installs an idm_progress_fn, called with the stage
+ *     (idm_stage), the work done and an estimate, at the start of each stage and then at most
+ *     about 50 times per second. Returning nonzero cancels: refine returns IDM_CANCELLED
+ *     within a few tens of milliseconds, with no mesh; the handle keeps its input and options
+ *     and may be refined again or freed. Nothing leaks.
+ *   - Callbacks are called from Rust frames: they must return normally (no C++ exception,
+ *     no longjmp out of them).
  *
  * Status codes
  *   - Every function returns an idm_status, except idm_mesherNd_free and
@@ -33,6 +43,7 @@
  *     naming the bad argument or input item (e.g. "segment 3 refers to point 17, but there
  *     are only 10 points"). After IDM_ERR_INVALID_INPUT, idm_last_error_item gives the
  *     item's kind and indices. IDM_INCOMPLETE is not an error: the mesh is readable.
+ *     IDM_CANCELLED means the progress callback asked to stop: there is no mesh.
  *
  * Options
  *   - Fill idm_optionsNd with idm_optionsNd_default before setting fields: it sets
@@ -229,7 +240,44 @@ typedef enum idm_status {
    * A caught panic or a failed internal invariant: a bug in idmesh, please report it.
    */
   IDM_ERR_INTERNAL = 7,
+  /**
+   * The progress callback asked to stop (see `idm_progress_fn`): there is no mesh, the
+   * input and options are kept, and the handle can be refined again or freed.
+   */
+  IDM_CANCELLED = 8,
 } idm_status;
+
+/**
+ * The stage a run is in, as the progress callback receives it (see `idm_progress_fn`). A run
+ * goes through them in this order, possibly skipping some. The values are fixed (ABI).
+ */
+typedef enum idm_stage {
+  /**
+   * Checking the input.
+   */
+  IDM_STAGE_READING = 0,
+  /**
+   * Inserting the input points (`done` counts them, `estimate` is their number).
+   */
+  IDM_STAGE_DELAUNAY = 1,
+  /**
+   * Recovering segments and facets and carving holes (`done`: Steiner points so far).
+   */
+  IDM_STAGE_BOUNDARY = 2,
+  /**
+   * Quality and size refinement (`done`: Steiner points so far; `estimate`: `done` plus
+   * the work queued, which changes as refinement goes).
+   */
+  IDM_STAGE_REFINING = 3,
+  /**
+   * Removing slivers (3D).
+   */
+  IDM_STAGE_SLIVERS = 4,
+  /**
+   * Building the output mesh.
+   */
+  IDM_STAGE_OUTPUT = 5,
+} idm_stage;
 
 /**
  * An opaque 2D mesher: the input PSLG and options, and the output of the last successful
@@ -322,6 +370,23 @@ typedef int32_t (*idm_sizing2d_fn)(void *user,
                                    const double *b,
                                    const double *c,
                                    double area);
+
+/**
+ * A progress callback: called during `idm_mesher2d_refine`, `idm_mesher3d_refine` and
+ * `idm_mesher3d_delaunay` with the stage, the work done in it (never decreasing within a
+ * stage) and an estimate of the stage's total (0 when unknown; it may change), and the
+ * `user` pointer given to `idm_mesherNd_set_progress`. Return 0 to go on, nonzero to cancel:
+ * the call then returns `IDM_CANCELLED` promptly (within a few tens of milliseconds).
+ *
+ * It is called at the start of each stage and then at most about 50 times per second, from
+ * the thread that called refine; it should return quickly. It must return normally: no C++
+ * exception may leave it and it must not `longjmp` out (the library's frames would be
+ * skipped and their memory leaked or corrupted); it must not call back into the same handle.
+ */
+typedef int32_t (*idm_progress_fn)(enum idm_stage stage,
+                                   uint64_t done,
+                                   uint64_t estimate,
+                                   void *user);
 
 /**
  * 3D meshing options. Fill it with `idm_options3d_default` first, then change what you need,
@@ -808,7 +873,8 @@ enum idm_status idm_mesher2d_add_regions(struct idm_mesher2d *m,
                                          size_t count);
 
 /**
- * Replaces the options (the sizing callback is kept; see `idm_mesher2d_set_sizing`). Value
+ * Replaces the options (the sizing and progress callbacks are kept; see
+ * `idm_mesher2d_set_sizing` and `idm_mesher2d_set_progress`). Value
  * ranges are checked by refine, except NaN angle or area, rejected here.
  *
  * # Safety
@@ -829,9 +895,23 @@ enum idm_status idm_mesher2d_set_options(struct idm_mesher2d *m, const struct id
 enum idm_status idm_mesher2d_set_sizing(struct idm_mesher2d *m, idm_sizing2d_fn fn, void *user);
 
 /**
+ * Sets the progress callback (see `idm_progress_fn`), which also lets the caller cancel a
+ * refine; `fn` NULL clears it (`user` is then ignored). `user` is stored, never dereferenced
+ * by the library, and handed to every call of `fn`; it must stay valid, and be usable from
+ * whichever thread calls refine, until the callback is cleared or the handle freed. The
+ * current mesh, if any, is kept.
+ *
+ * # Safety
+ * `m` must be a live handle; `fn` must be NULL or a function with the `idm_progress_fn`
+ * contract.
+ */
+enum idm_status idm_mesher2d_set_progress(struct idm_mesher2d *m, idm_progress_fn fn, void *user);
+
+/**
  * Meshes the input with the current options, replacing any previous mesh. Returns `IDM_OK`,
- * `IDM_INCOMPLETE` (Steiner cap reached; the mesh is readable and valid; the message says so)
- * or an error, in which case there is no mesh. The input is kept either way.
+ * `IDM_INCOMPLETE` (Steiner cap reached; the mesh is readable and valid; the message says so),
+ * `IDM_CANCELLED` (the progress callback asked to stop) or an error; on `IDM_CANCELLED` or an
+ * error there is no mesh. The input is kept either way.
  *
  * # Safety
  * `m` must be a live handle.
@@ -1038,7 +1118,8 @@ enum idm_status idm_mesher3d_add_region(struct idm_mesher3d *m,
                                         double max_volume);
 
 /**
- * Replaces the options (the sizing callback is kept; see `idm_mesher3d_set_sizing`). Value
+ * Replaces the options (the sizing and progress callbacks are kept; see
+ * `idm_mesher3d_set_sizing` and `idm_mesher3d_set_progress`). Value
  * ranges are checked by refine, except NaN radius-edge or volume, rejected here.
  *
  * # Safety
@@ -1059,10 +1140,25 @@ enum idm_status idm_mesher3d_set_options(struct idm_mesher3d *m, const struct id
 enum idm_status idm_mesher3d_set_sizing(struct idm_mesher3d *m, idm_sizing3d_fn fn, void *user);
 
 /**
+ * Sets the progress callback (see `idm_progress_fn`), which also lets the caller cancel a
+ * refine or delaunay call; `fn` NULL clears it (`user` is then ignored). `user` is stored, never dereferenced
+ * by the library, and handed to every call of `fn`; it must stay valid, and be usable from
+ * whichever thread calls refine, until the callback is cleared or the handle freed. The
+ * current mesh, if any, is kept.
+ *
+ * # Safety
+ * `m` must be a live handle; `fn` must be NULL or a function with the `idm_progress_fn`
+ * contract.
+ */
+enum idm_status idm_mesher3d_set_progress(struct idm_mesher3d *m,
+                                          idm_progress_fn fn,
+                                          void *user);
+
+/**
  * Meshes the PLC with the current options (TetGen's `-p`), replacing any previous mesh.
  * Returns `IDM_OK`, `IDM_INCOMPLETE` (Steiner cap reached; the mesh is readable and valid;
- * the message says so) or an error, in which case there is no mesh. The input is kept either
- * way.
+ * the message says so), `IDM_CANCELLED` (the progress callback asked to stop) or an error;
+ * on `IDM_CANCELLED` or an error there is no mesh. The input is kept either way.
  *
  * # Safety
  * `m` must be a live handle.
@@ -1073,7 +1169,8 @@ enum idm_status idm_mesher3d_refine(struct idm_mesher3d *m);
  * Delaunay tetrahedralization of the points added so far (TetGen without `-p`), replacing
  * any previous mesh: the tetrahedra fill the convex hull, the faces are the hull faces
  * (marker 0) and vertex i keeps input point i's marker. Segments, facets, holes, regions and
- * options are ignored. Returns `IDM_OK` or an error (then there is no mesh).
+ * options are ignored, except the progress callback. Returns `IDM_OK`, `IDM_CANCELLED` or an
+ * error (then there is no mesh).
  *
  * # Safety
  * `m` must be a live handle.
@@ -1264,7 +1361,7 @@ void idm_plc3d_free(struct idm_plc3d *p);
  * refined (`idm_mesher3d_refine` with the options the switches ask for, coplanar facets merged
  * unless `M`), without it the points are tetrahedralized (`idm_mesher3d_delaunay`); with `d`
  * the PLC is only checked and no mesh is made; with `C` the mesh is validated. The switches'
- * options replace the handle's (its sizing callback is kept). `*tetgen_code` (when not NULL)
+ * options replace the handle's (its sizing and progress callbacks are kept). `*tetgen_code` (when not NULL)
  * gets TetGen's code for the outcome, also on failure: 0 success (including `IDM_INCOMPLETE`,
  * a mesh stopped at the `S` cap), 3 intersecting input, 10 other input errors, 2 internal
  * errors, 1 out of memory. Items named in input error messages are numbered from `base` (the

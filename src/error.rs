@@ -232,6 +232,9 @@ pub enum Error {
     Unsupported(String),
     /// An internal invariant failed (a bug): the message says which. Never a panic.
     Internal(String),
+    /// The progress callback asked to stop (see [`crate::progress`]); the stage the run was
+    /// in. Nothing of the run is kept.
+    Cancelled(crate::progress::Stage),
 }
 
 impl InputError {
@@ -507,6 +510,7 @@ impl fmt::Display for Error {
             Error::InvalidOption(m) => write!(f, "invalid option: {m}"),
             Error::Unsupported(m) => write!(f, "unsupported: {m}"),
             Error::Internal(m) => write!(f, "internal error (please report): {m}"),
+            Error::Cancelled(s) => write!(f, "cancelled by the progress callback (stage: {s})"),
         }
     }
 }

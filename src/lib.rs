@@ -37,6 +37,7 @@ mod lp;
 pub mod mesh2d;
 pub mod mesh3d;
 pub mod predicates;
+pub mod progress;
 pub mod switches;
 
 pub use error::{Error, InputError};
@@ -48,3 +49,4 @@ pub use input::{Pslg, Region};
 pub use input3d::{Facet, Plc, Region3};
 pub use mesh2d::{triangulate, Options, SizingFn, TriMesh};
 pub use mesh3d::{delaunay3d, tetrahedralize, Options3, SizingFn3, TetMesh};
+pub use progress::{ProgressFn, Stage};

@@ -2,11 +2,14 @@
 //! meshing) and `idmesh tetgen [SWITCHES] FILE` (TetGen-compatible 3D meshing).
 //!
 //! Exit status 0 on success; 1 with a single line `idmesh: <message>` on standard error on any
-//! error, including an internal one (a panic is caught and reported the same way).
+//! error, including an internal one (a panic is caught and reported the same way); 130 after
+//! Ctrl-C, which stops a run without leaving output files (see `progress_ui`).
 
 // The crate root sits in src/bin/, so submodules need explicit paths.
 #[path = "idmesh/names.rs"]
 mod names;
+#[path = "idmesh/progress_ui.rs"]
+mod progress_ui;
 #[path = "idmesh/show_cmd.rs"]
 mod show_cmd;
 #[path = "idmesh/tetgen_cmd.rs"]
@@ -41,6 +44,10 @@ fn main() -> ExitCode {
     let args: Vec<OsString> = std::env::args_os().skip(1).collect();
     match std::panic::catch_unwind(|| run(&args)) {
         Ok(Ok(())) => ExitCode::SUCCESS,
+        Ok(Err(_)) if progress_ui::interrupted() => {
+            eprintln!("idmesh: interrupted");
+            ExitCode::from(progress_ui::EXIT_INTERRUPTED)
+        }
         Ok(Err(message)) => {
             // Keep the promise of a single line whatever the message holds.
             eprintln!("idmesh: {}", message.trim_end().replace('\n', "; "));

@@ -1,7 +1,7 @@
 //! The machinery every C entry point shares, written once for both dimensions: the status
 //! enum, the panic guard, the thread-local last error, pointer and count checks, the handle
 //! lifecycle (`_new`/`_free`), lending output arrays, counts, validation, running a mesher,
-//! the sizing-callback wrapper and the options header.
+//! the stage enum and the sizing- and progress-callback wrappers, and the options header.
 //!
 //! The per-dimension files ([`super::mesh2d`], [`super::mesh3d`]) declare the `extern "C"`
 //! functions (cbindgen reads declarations, not macro expansions) and forward each body here,
@@ -13,6 +13,7 @@ use std::mem::size_of;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use crate::error::{panic_message, Error};
+use crate::progress::{ProgressFn, Stage};
 use crate::NONE;
 
 /// The "no index" value of the index arrays (a missing neighbour): `UINT32_MAX`.
@@ -41,7 +42,57 @@ pub enum idm_status {
     IDM_ERR_UNSUPPORTED = 6,
     /// A caught panic or a failed internal invariant: a bug in idmesh, please report it.
     IDM_ERR_INTERNAL = 7,
+    /// The progress callback asked to stop (see `idm_progress_fn`): there is no mesh, the
+    /// input and options are kept, and the handle can be refined again or freed.
+    IDM_CANCELLED = 8,
 }
+
+/// The stage a run is in, as the progress callback receives it (see `idm_progress_fn`). A run
+/// goes through them in this order, possibly skipping some. The values are fixed (ABI).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum idm_stage {
+    /// Checking the input.
+    IDM_STAGE_READING = 0,
+    /// Inserting the input points (`done` counts them, `estimate` is their number).
+    IDM_STAGE_DELAUNAY = 1,
+    /// Recovering segments and facets and carving holes (`done`: Steiner points so far).
+    IDM_STAGE_BOUNDARY = 2,
+    /// Quality and size refinement (`done`: Steiner points so far; `estimate`: `done` plus
+    /// the work queued, which changes as refinement goes).
+    IDM_STAGE_REFINING = 3,
+    /// Removing slivers (3D).
+    IDM_STAGE_SLIVERS = 4,
+    /// Building the output mesh.
+    IDM_STAGE_OUTPUT = 5,
+}
+
+impl From<Stage> for idm_stage {
+    fn from(s: Stage) -> Self {
+        match s {
+            Stage::Reading => idm_stage::IDM_STAGE_READING,
+            Stage::Delaunay => idm_stage::IDM_STAGE_DELAUNAY,
+            Stage::Boundary => idm_stage::IDM_STAGE_BOUNDARY,
+            Stage::Refining => idm_stage::IDM_STAGE_REFINING,
+            Stage::Slivers => idm_stage::IDM_STAGE_SLIVERS,
+            Stage::Output => idm_stage::IDM_STAGE_OUTPUT,
+        }
+    }
+}
+
+/// A progress callback: called during `idm_mesher2d_refine`, `idm_mesher3d_refine` and
+/// `idm_mesher3d_delaunay` with the stage, the work done in it (never decreasing within a
+/// stage) and an estimate of the stage's total (0 when unknown; it may change), and the
+/// `user` pointer given to `idm_mesherNd_set_progress`. Return 0 to go on, nonzero to cancel:
+/// the call then returns `IDM_CANCELLED` promptly (within a few tens of milliseconds).
+///
+/// It is called at the start of each stage and then at most about 50 times per second, from
+/// the thread that called refine; it should return quickly. It must return normally: no C++
+/// exception may leave it and it must not `longjmp` out (the library's frames would be
+/// skipped and their memory leaked or corrupted); it must not call back into the same handle.
+pub type idm_progress_fn = Option<
+    unsafe extern "C" fn(stage: idm_stage, done: u64, estimate: u64, user: *mut c_void) -> i32,
+>;
 
 /// A failed (or incomplete) call: the status to return, the message for `idm_last_error` and,
 /// for invalid input, the error itself (for `idm_last_error_item`).
@@ -79,6 +130,7 @@ impl From<Error> for Failure {
             Error::InvalidOption(_) => idm_status::IDM_ERR_INVALID_ARGUMENT,
             Error::Unsupported(_) => idm_status::IDM_ERR_UNSUPPORTED,
             Error::Internal(_) => idm_status::IDM_ERR_INTERNAL,
+            Error::Cancelled(_) => idm_status::IDM_CANCELLED,
         };
         let mut f = Failure::new(status, e.to_string());
         if let Error::Input(input) = e {
@@ -592,23 +644,65 @@ pub(crate) unsafe fn validate<H: Handle>(m: *const H) -> idm_status {
     })
 }
 
-/// A C sizing callback of type `F` with its user pointer; each dimension calls `f` with its
-/// own arguments.
+/// A C callback of type `F` (a sizing test or a progress callback) with its user pointer;
+/// each dimension calls a sizing `f` with its own arguments.
 #[derive(Clone, Copy)]
-pub(crate) struct CSizing<F> {
+pub(crate) struct CCallback<F> {
     pub(crate) f: F,
     pub(crate) user: *mut c_void,
 }
 
 // SAFETY: the raw `user` pointer is what makes this type neither Send nor Sync. The mesher calls
-// the sizing function only inside `idm_mesherNd_refine`, from the thread that called it, and
-// keeps no copy after the handle is freed. Whether `user` (and the callback) may be used from
-// the thread that calls refine is the caller's contract, stated in the header at
-// `idm_sizingNd_fn` and `idm_mesherNd_set_sizing`; Rust cannot check it.
-unsafe impl<F: Send> Send for CSizing<F> {}
+// the function only inside `idm_mesherNd_refine` (or `_delaunay`), from the thread that called
+// it, and keeps no copy after the handle is freed. Whether `user` (and the callback) may be used
+// from the thread that calls refine is the caller's contract, stated in the header at
+// `idm_sizingNd_fn`, `idm_progress_fn` and their setters; Rust cannot check it.
+unsafe impl<F: Send> Send for CCallback<F> {}
 // SAFETY: as for Send: concurrent use would require the caller to refine one handle from two
 // threads at once, which the header forbids.
-unsafe impl<F: Sync> Sync for CSizing<F> {}
+unsafe impl<F: Sync> Sync for CCallback<F> {}
+
+/// The C function of `idm_progress_fn`.
+type ProgressFnC = unsafe extern "C" fn(idm_stage, u64, u64, *mut c_void) -> i32;
+
+impl CCallback<ProgressFnC> {
+    /// Calls the C progress function: whether to go on. A method so that the closure captures
+    /// the whole `Send + Sync` struct, not its bare raw pointer.
+    fn go_on(&self, stage: Stage, done: u64, estimate: u64) -> bool {
+        // SAFETY: the function pointer and `user` are the caller's contract (see
+        // `idm_progress_fn` and `idm_mesherNd_set_progress`).
+        unsafe { (self.f)(stage.into(), done, estimate, self.user) == 0 }
+    }
+}
+
+/// The body of the `_set_progress` calls: wraps the C callback (NULL clears it) and hands it to
+/// `install`. The mesh is kept: a callback does not change what refine makes.
+///
+/// # Safety
+/// `m` a live handle; `f` NULL or a function with the `idm_progress_fn` contract.
+pub(crate) unsafe fn set_progress<H: Handle>(
+    m: *mut H,
+    f: idm_progress_fn,
+    user: *mut c_void,
+    install: impl FnOnce(&mut H, Option<ProgressFn>),
+) -> idm_status {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let m = unsafe { handle_mut(m) }?;
+        let progress = f.map(|f| {
+            let c = CCallback { f, user };
+            std::sync::Arc::new(move |s, done, estimate| {
+                if c.go_on(s, done, estimate) {
+                    std::ops::ControlFlow::Continue(())
+                } else {
+                    std::ops::ControlFlow::Break(())
+                }
+            }) as ProgressFn
+        });
+        install(m, progress);
+        Ok(())
+    })
+}
 
 /// A bound of the C options as the Rust options hold it: `<= 0` means none.
 pub(crate) fn positive(x: f64) -> Option<f64> {

@@ -9,9 +9,10 @@ use std::mem::size_of;
 use std::sync::Arc;
 
 use super::common::{
-    add_marked, change, counts, free_handle, idm_status, impl_handle, init_options, input_slice,
-    lend, lend_plain, new_handle, optional_slice, positive, read_options, reject_nan, reserve, run,
-    scaled, steiner_cap_to_c, validate, CSizing, Failure, Handle, SizedOptions,
+    add_marked, change, counts, free_handle, idm_progress_fn, idm_status, impl_handle,
+    init_options, input_slice, lend, lend_plain, new_handle, optional_slice, positive,
+    read_options, reject_nan, reserve, run, scaled, set_progress, steiner_cap_to_c, validate,
+    CCallback, Failure, Handle, SizedOptions,
 };
 use crate::input::{Pslg, Region};
 use crate::mesh2d::{triangulate, Options, SizingFn, TriMesh};
@@ -100,7 +101,7 @@ impl_handle!(
 /// The C sizing function of `idm_sizing2d_fn`.
 type SizingFn2C = unsafe extern "C" fn(*mut c_void, *const f64, *const f64, *const f64, f64) -> i32;
 
-impl CSizing<SizingFn2C> {
+impl CCallback<SizingFn2C> {
     /// Calls the C function. A method (rather than field accesses in the closure) so that the
     /// closure captures the whole `Send + Sync` struct, not its bare raw pointer.
     fn call(&self, a: [f64; 2], b: [f64; 2], c: [f64; 2], area: f64) -> bool {
@@ -286,7 +287,8 @@ pub unsafe extern "C" fn idm_mesher2d_add_regions(
     }
 }
 
-/// Replaces the options (the sizing callback is kept; see `idm_mesher2d_set_sizing`). Value
+/// Replaces the options (the sizing and progress callbacks are kept; see
+/// `idm_mesher2d_set_sizing` and `idm_mesher2d_set_progress`). Value
 /// ranges are checked by refine, except NaN angle or area, rejected here.
 ///
 /// # Safety
@@ -312,6 +314,7 @@ pub unsafe extern "C" fn idm_mesher2d_set_options(
                 off_centers: o.off_centers != 0,
                 split_crossings: o.split_crossings != 0,
                 sizing: m.opts.sizing.take(),
+                progress: m.opts.progress.take(),
                 verbose: m.opts.verbose,
             };
             Ok(())
@@ -334,7 +337,7 @@ pub unsafe extern "C" fn idm_mesher2d_set_sizing(
     user: *mut c_void,
 ) -> idm_status {
     let sizing = r#fn.map(|f| {
-        let c = CSizing { f, user };
+        let c = CCallback { f, user };
         Arc::new(move |a, b, c3, area| c.call(a, b, c3, area)) as SizingFn
     });
     // SAFETY: the caller's contract, forwarded.
@@ -346,9 +349,29 @@ pub unsafe extern "C" fn idm_mesher2d_set_sizing(
     }
 }
 
+/// Sets the progress callback (see `idm_progress_fn`), which also lets the caller cancel a
+/// refine; `fn` NULL clears it (`user` is then ignored). `user` is stored, never dereferenced
+/// by the library, and handed to every call of `fn`; it must stay valid, and be usable from
+/// whichever thread calls refine, until the callback is cleared or the handle freed. The
+/// current mesh, if any, is kept.
+///
+/// # Safety
+/// `m` must be a live handle; `fn` must be NULL or a function with the `idm_progress_fn`
+/// contract.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher2d_set_progress(
+    m: *mut idm_mesher2d,
+    r#fn: idm_progress_fn,
+    user: *mut c_void,
+) -> idm_status {
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { set_progress(m, r#fn, user, |h, p| h.opts.progress = p) }
+}
+
 /// Meshes the input with the current options, replacing any previous mesh. Returns `IDM_OK`,
-/// `IDM_INCOMPLETE` (Steiner cap reached; the mesh is readable and valid; the message says so)
-/// or an error, in which case there is no mesh. The input is kept either way.
+/// `IDM_INCOMPLETE` (Steiner cap reached; the mesh is readable and valid; the message says so),
+/// `IDM_CANCELLED` (the progress callback asked to stop) or an error; on `IDM_CANCELLED` or an
+/// error there is no mesh. The input is kept either way.
 ///
 /// # Safety
 /// `m` must be a live handle.

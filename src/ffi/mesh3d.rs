@@ -10,13 +10,14 @@ use std::mem::size_of;
 use std::sync::Arc;
 
 use super::common::{
-    add_marked, change, check_index_room, check_out, counts, free_handle, guard, idm_status,
-    impl_handle, init_options, input_slice, lend, lend_plain, mesh_of, new_handle, positive,
-    read_options, reject_nan, reserve, run, scaled, steiner_cap_to_c, validate, CSizing, Failure,
-    Handle, SizedOptions,
+    add_marked, change, check_index_room, check_out, counts, free_handle, guard, idm_progress_fn,
+    idm_status, impl_handle, init_options, input_slice, lend, lend_plain, mesh_of, new_handle,
+    positive, read_options, reject_nan, reserve, run, scaled, set_progress, steiner_cap_to_c,
+    validate, CCallback, Failure, Handle, SizedOptions,
 };
 use crate::input3d::{Facet, Plc, Region3};
 use crate::mesh3d::{delaunay3d, tetrahedralize, Options3, SizingFn3, TetMesh};
+use crate::progress::observe;
 
 /// 3D meshing options. Fill it with `idm_options3d_default` first, then change what you need,
 /// so that code keeps working if fields are ever appended. Booleans are `int32_t`: 0 is false,
@@ -115,7 +116,7 @@ impl_handle!(
 type SizingFn3C =
     unsafe extern "C" fn(*mut c_void, *const f64, *const f64, *const f64, *const f64, f64) -> i32;
 
-impl CSizing<SizingFn3C> {
+impl CCallback<SizingFn3C> {
     /// Calls the C function. A method (rather than field accesses in the closure) so that the
     /// closure captures the whole `Send + Sync` struct, not its bare raw pointer.
     fn call(&self, a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3], volume: f64) -> bool {
@@ -380,7 +381,8 @@ pub unsafe extern "C" fn idm_mesher3d_add_region(
     }
 }
 
-/// Replaces the options (the sizing callback is kept; see `idm_mesher3d_set_sizing`). Value
+/// Replaces the options (the sizing and progress callbacks are kept; see
+/// `idm_mesher3d_set_sizing` and `idm_mesher3d_set_progress`). Value
 /// ranges are checked by refine, except NaN radius-edge or volume, rejected here.
 ///
 /// # Safety
@@ -402,6 +404,7 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
                 region_attributes: o.region_attributes != 0,
                 max_steiner: u64::try_from(o.max_steiner).ok(),
                 sizing: m.opts.sizing.take(),
+                progress: m.opts.progress.take(),
                 keep_surface: o.keep_surface != 0,
                 merge_coplanar: false,
                 verbose: o.verbose != 0,
@@ -429,7 +432,7 @@ pub unsafe extern "C" fn idm_mesher3d_set_sizing(
     unsafe {
         change(m, |m| {
             m.opts.sizing = r#fn.map(|f| {
-                let c = CSizing { f, user };
+                let c = CCallback { f, user };
                 Arc::new(move |a, b, c3, d, volume| c.call(a, b, c3, d, volume)) as SizingFn3
             });
             Ok(())
@@ -437,10 +440,29 @@ pub unsafe extern "C" fn idm_mesher3d_set_sizing(
     }
 }
 
+/// Sets the progress callback (see `idm_progress_fn`), which also lets the caller cancel a
+/// refine or delaunay call; `fn` NULL clears it (`user` is then ignored). `user` is stored, never dereferenced
+/// by the library, and handed to every call of `fn`; it must stay valid, and be usable from
+/// whichever thread calls refine, until the callback is cleared or the handle freed. The
+/// current mesh, if any, is kept.
+///
+/// # Safety
+/// `m` must be a live handle; `fn` must be NULL or a function with the `idm_progress_fn`
+/// contract.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher3d_set_progress(
+    m: *mut idm_mesher3d,
+    r#fn: idm_progress_fn,
+    user: *mut c_void,
+) -> idm_status {
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { set_progress(m, r#fn, user, |h, p| h.opts.progress = p) }
+}
+
 /// Meshes the PLC with the current options (TetGen's `-p`), replacing any previous mesh.
 /// Returns `IDM_OK`, `IDM_INCOMPLETE` (Steiner cap reached; the mesh is readable and valid;
-/// the message says so) or an error, in which case there is no mesh. The input is kept either
-/// way.
+/// the message says so), `IDM_CANCELLED` (the progress callback asked to stop) or an error;
+/// on `IDM_CANCELLED` or an error there is no mesh. The input is kept either way.
 ///
 /// # Safety
 /// `m` must be a live handle.
@@ -453,7 +475,8 @@ pub unsafe extern "C" fn idm_mesher3d_refine(m: *mut idm_mesher3d) -> idm_status
 /// Delaunay tetrahedralization of the points added so far (TetGen without `-p`), replacing
 /// any previous mesh: the tetrahedra fill the convex hull, the faces are the hull faces
 /// (marker 0) and vertex i keeps input point i's marker. Segments, facets, holes, regions and
-/// options are ignored. Returns `IDM_OK` or an error (then there is no mesh).
+/// options are ignored, except the progress callback. Returns `IDM_OK`, `IDM_CANCELLED` or an
+/// error (then there is no mesh).
 ///
 /// # Safety
 /// `m` must be a live handle.
@@ -462,7 +485,7 @@ pub unsafe extern "C" fn idm_mesher3d_delaunay(m: *mut idm_mesher3d) -> idm_stat
     // SAFETY: the caller's contract, forwarded.
     unsafe {
         run(m, false, |h| {
-            let mut mesh = delaunay3d(&h.plc.points)?;
+            let mut mesh = observe(h.opts.progress.as_ref(), || delaunay3d(&h.plc.points))?;
             // `delaunay3d` sees coordinates only; the markers are the handle's to restore, as
             // TetGen keeps the .node markers.
             for (dst, &src) in mesh.vertex_markers.iter_mut().zip(&h.plc.point_markers) {
@@ -1573,6 +1596,7 @@ mod tests {
             Error::InvalidOption(_) => IDM_ERR_INVALID_ARGUMENT,
             Error::Unsupported(_) => IDM_ERR_UNSUPPORTED,
             Error::Internal(_) => IDM_ERR_INTERNAL,
+            Error::Cancelled(_) => IDM_CANCELLED,
         };
         assert_eq!(st, status);
         assert_eq!(last_error(), want.to_string());

@@ -2,8 +2,8 @@
 //!
 //! [`common`] holds what every entry point shares, once: the status enum, the panic guard, the
 //! thread-local last error (with the kind and index of a bad input item), pointer and count
-//! checks, the handle lifecycle, lending output arrays, counts, validation and the sizing
-//! callback wrapper. [`input_error`] reports the kind and index of a bad input item. [`mesh2d`] and [`mesh3d`] declare the `idm_mesher2d_*` and
+//! checks, the handle lifecycle, lending output arrays, counts, validation and the sizing and
+//! progress callback wrappers. [`input_error`] reports the kind and index of a bad input item. [`mesh2d`] and [`mesh3d`] declare the `idm_mesher2d_*` and
 //! `idm_mesher3d_*` functions and hold only what differs between the dimensions.
 //!
 //! Conventions shared by every function returning [`idm_status`]:

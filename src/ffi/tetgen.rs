@@ -486,7 +486,7 @@ fn tetgen_code(e: &Error) -> i32 {
 /// refined (`idm_mesher3d_refine` with the options the switches ask for, coplanar facets merged
 /// unless `M`), without it the points are tetrahedralized (`idm_mesher3d_delaunay`); with `d`
 /// the PLC is only checked and no mesh is made; with `C` the mesh is validated. The switches'
-/// options replace the handle's (its sizing callback is kept). `*tetgen_code` (when not NULL)
+/// options replace the handle's (its sizing and progress callbacks are kept). `*tetgen_code` (when not NULL)
 /// gets TetGen's code for the outcome, also on failure: 0 success (including `IDM_INCOMPLETE`,
 /// a mesh stopped at the `S` cap), 3 intersecting input, 10 other input errors, 2 internal
 /// errors, 1 out of memory. Items named in input error messages are numbered from `base` (the
@@ -508,9 +508,9 @@ pub unsafe extern "C" fn idm_mesher3d_tetgen(
         let sw = unsafe { switches_of(sw) }?;
         code = 10;
         m.mesh = None;
-        let sizing = m.opts.sizing.take();
+        let (sizing, progress) = (m.opts.sizing.take(), m.opts.progress.take());
         m.opts = sw.options();
-        m.opts.sizing = sizing;
+        (m.opts.sizing, m.opts.progress) = (sizing, progress);
         let mut fail = |e: Error| {
             code = self::tetgen_code(&e);
             match e {

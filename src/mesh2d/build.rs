@@ -8,6 +8,7 @@ use super::{Options, TriMesh, NONE};
 use crate::error::{Error, InputError};
 use crate::input::Pslg;
 use crate::predicates::{orient2d, strictly_between};
+use crate::progress::{stage, tick, Stage};
 
 /// The largest accepted minimum-angle bound, in degrees.
 pub const MAX_MIN_ANGLE: f64 = 34.0;
@@ -30,12 +31,15 @@ pub(super) fn run_with(
     opts: &Options,
     policy: SegmentSteiner,
 ) -> Result<TriMesh, Error> {
+    let n = pslg.points.len();
+    stage(Stage::Reading, || (0, n as u64))?;
     check_options(opts)?;
     check_input(pslg)?;
-    let n = pslg.points.len();
+    stage(Stage::Delaunay, || (0, n as u64))?;
     let mut cdt = Cdt::new(&pslg.points);
     cdt.inseg_ends = pslg.segments.clone();
     insert_points(&mut cdt, &pslg.points)?;
+    stage(Stage::Boundary, || (0, 0))?;
     let pieces = segment_pieces(pslg, &mut cdt, opts.split_crossings)?;
     let mut r = Refiner::new(cdt, pslg, opts);
     r.policy = policy;
@@ -65,6 +69,7 @@ pub(super) fn run_with(
             break;
         }
     }
+    stage(Stage::Output, || (0, 0))?;
     let mesh = output(&mut r, n, pslg, opts)?;
     // Never hand back a broken mesh as a success: the structure and the local empty-circle
     // rule (exact, linear) always; the global empty-circle search too in debug builds and in
@@ -372,6 +377,10 @@ fn insert_points(cdt: &mut Cdt, points: &[[f64; 2]]) -> Result<(), Error> {
     for k in 0..n {
         if k == 0 || k == b_pos || k == c_pos {
             continue;
+        }
+        if let Err(e) = tick(|| (k as u64, n as u64)) {
+            result = Err(e);
+            break;
         }
         let i = order[k];
         match cdt.insert_bulk(k as u32) {

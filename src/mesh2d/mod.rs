@@ -101,6 +101,9 @@ pub struct Options {
     pub split_crossings: bool,
     /// A user sizing test (Triangle's `-u`); see [`SizingFn`]. Default: `None`.
     pub sizing: Option<SizingFn>,
+    /// A progress callback, which may also cancel the run; see [`crate::progress`].
+    /// Default: `None`.
+    pub progress: Option<crate::progress::ProgressFn>,
     /// Print progress lines to standard error during long runs. Default: `false`.
     pub verbose: bool,
 }
@@ -118,6 +121,7 @@ impl Default for Options {
             off_centers: true,
             split_crossings: false,
             sizing: None,
+            progress: None,
             verbose: false,
         }
     }
@@ -136,6 +140,7 @@ impl fmt::Debug for Options {
             .field("off_centers", &self.off_centers)
             .field("split_crossings", &self.split_crossings)
             .field("sizing", &self.sizing.as_ref().map(|_| "<fn>"))
+            .field("progress", &self.progress.as_ref().map(|_| "<fn>"))
             .field("verbose", &self.verbose)
             .finish()
     }
@@ -145,8 +150,12 @@ impl fmt::Debug for Options {
 /// (minus holes), refined to the options' angle and area bounds.
 ///
 /// Returns an error naming the offending item for invalid input. When the Steiner cap is hit the
-/// mesh is still returned (valid and conforming) with `complete == false`.
+/// mesh is still returned (valid and conforming) with `complete == false`. With
+/// [`Options::progress`] set, the run reports to it and returns [`Error::Cancelled`] when told
+/// to stop.
 pub fn triangulate(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
     // A bug must never take the host program down: a panic becomes `Error::Internal`.
-    crate::error::catch_panic("", || build::run(pslg, opts))
+    crate::error::catch_panic("", || {
+        crate::progress::observe(opts.progress.as_ref(), || build::run(pslg, opts))
+    })
 }

@@ -14,6 +14,7 @@ use crate::error::Error;
 use crate::geometry::{area2, dist2, min_angle_sin2, steiner_point};
 use crate::input::Pslg;
 use crate::predicates::{encroaches, orient2d};
+use crate::progress::{stage, tick, Stage};
 
 /// One piece of an input segment after splitting it at input points lying on it.
 #[derive(Clone, Copy, Debug)]
@@ -344,6 +345,7 @@ impl<'a> Refiner<'a> {
     /// Splits queued segments until none is left (the recursion of Fig. 2 step 8).
     pub fn drain_splits(&mut self) -> Result<(), Error> {
         while let Some(s) = self.cdt.split_queue.pop() {
+            tick(|| (self.steiner(), 0))?;
             self.cdt.seg_queued[s as usize] = false;
             self.split_segment(s)?;
         }
@@ -539,6 +541,11 @@ impl<'a> Refiner<'a> {
         false
     }
 
+    /// Steiner points so far (the progress reports' `done`).
+    fn steiner(&self) -> u64 {
+        self.cdt.pts.len().saturating_sub(self.n_input + 1) as u64
+    }
+
     /// Whether any refinement criterion is set.
     pub fn will_refine(&self) -> bool {
         let o = self.opts;
@@ -558,6 +565,7 @@ impl<'a> Refiner<'a> {
         if !self.will_refine() {
             return Ok(false);
         }
+        stage(Stage::Refining, || (self.steiner(), 0))?;
         let before = self.cdt.pts.len();
         self.refining = true;
         for t in 0..self.cdt.num_slots() as TriId {
@@ -569,6 +577,10 @@ impl<'a> Refiner<'a> {
         let cap = o.max_steiner.unwrap_or(u64::MAX);
         let mut last_report = 0usize;
         while let Some((t, vs)) = self.pop_bad() {
+            tick(|| {
+                let queued = (self.queue.len() + self.size_queue.len()) as u64;
+                (self.steiner(), self.steiner() + queued)
+            })?;
             if !self.cdt.alive(t) || self.cdt.tv[t as usize] != vs {
                 continue;
             }

@@ -89,6 +89,7 @@ pub(crate) fn insert_vertices(
     tets.init(a, b, c, d);
     let mut hint = tets.vertex_tet(a);
     for (i, &v) in order.iter().enumerate() {
+        crate::progress::tick(|| (i as u64, order.len() as u64))?;
         if first.contains(&i) {
             continue;
         }
@@ -131,7 +132,10 @@ pub(crate) fn build(points: &[[f64; 3]]) -> Result<(Tets, Vec<u32>), Error> {
 
 /// The Delaunay tetrahedralization of `points` as a [`TetMesh`] (see [`super::delaunay3d`]).
 pub(crate) fn delaunay(points: &[[f64; 3]]) -> Result<TetMesh, Error> {
+    use crate::progress::{stage, Stage};
+    stage(Stage::Delaunay, || (0, points.len() as u64))?;
     let (tets, input_of) = build(points)?;
+    stage(Stage::Output, || (0, tets.num_slots() as u64))?;
     Ok(to_mesh(&tets, &input_of, points))
 }
 

@@ -54,6 +54,9 @@ pub struct Options3 {
     pub max_steiner: Option<u64>,
     /// A user sizing test; see [`SizingFn3`]. Default: `None`.
     pub sizing: Option<SizingFn3>,
+    /// A progress callback, which may also cancel the run; see [`crate::progress`].
+    /// Default: `None`.
+    pub progress: Option<crate::progress::ProgressFn>,
     /// Keep the input surface (TetGen's `-Y`): no Steiner points on input edges or facets.
     /// The boundary faces of the mesh are then the input's triangles (a polygon facet is
     /// triangulated on its own vertices) and [`TetMesh::surface_kept`] is set.
@@ -88,6 +91,7 @@ impl fmt::Debug for Options3 {
             .field("region_attributes", &self.region_attributes)
             .field("max_steiner", &self.max_steiner)
             .field("sizing", &self.sizing.as_ref().map(|_| "<fn>"))
+            .field("progress", &self.progress.as_ref().map(|_| "<fn>"))
             .field("keep_surface", &self.keep_surface)
             .field("merge_coplanar", &self.merge_coplanar)
             .field("verbose", &self.verbose)
@@ -99,22 +103,29 @@ impl fmt::Debug for Options3 {
 /// (minus holes), refined to the options' radius-edge and volume bounds.
 ///
 /// Returns an error naming the offending item for invalid input. When the Steiner cap is hit the
-/// mesh is still returned (valid and conforming) with `complete == false`.
+/// mesh is still returned (valid and conforming) with `complete == false`. With
+/// [`Options3::progress`] set, the run reports to it and returns [`Error::Cancelled`] when told
+/// to stop.
 pub fn tetrahedralize(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
     catch_panic("", || {
-        crate::input3d::check_plc(plc)?;
-        check_options(opts)?;
-        let merged = (opts.merge_coplanar && !opts.keep_surface)
-            .then(|| coplanar::merge_coplanar_facets(plc))
-            .flatten();
-        let mesh = plc::mesh_plc(merged.as_ref().unwrap_or(plc), opts)?;
-        validate::check_output(&mesh)?;
-        Ok(mesh)
+        crate::progress::observe(opts.progress.as_ref(), || {
+            use crate::progress::{stage, Stage};
+            stage(Stage::Reading, || (0, plc.points.len() as u64))?;
+            crate::input3d::check_plc(plc)?;
+            check_options(opts)?;
+            let merged = (opts.merge_coplanar && !opts.keep_surface)
+                .then(|| coplanar::merge_coplanar_facets(plc))
+                .flatten();
+            let mesh = plc::mesh_plc(merged.as_ref().unwrap_or(plc), opts)?;
+            validate::check_output(&mesh)?;
+            Ok(mesh)
+        })
     })
 }
 
 /// Delaunay tetrahedralization of a point set (TetGen without `-p`): the tetrahedra fill the
-/// convex hull; there are no facets. Duplicate points are reported as errors.
+/// convex hull; there are no facets. Duplicate points are reported as errors. To watch its
+/// progress (or cancel it), call it inside [`crate::progress::observe`].
 pub fn delaunay3d(points: &[[f64; 3]]) -> Result<TetMesh, Error> {
     catch_panic("", || {
         let mesh = delaunay::delaunay(points)?;

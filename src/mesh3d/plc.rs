@@ -25,6 +25,7 @@ use crate::error::Error;
 use crate::geometry::{tet_circumcenter, tet_radius_edge, tet_volume, tri_circumcenter3};
 use crate::input3d::Plc;
 use crate::predicates::{in_diametral_ball_seg3, in_diametral_ball_tri, orient3d};
+use crate::progress::{stage, tick, Stage};
 
 /// Refinement stops (with an error) before the kernel's slot space runs out.
 const MAX_TET_SLOTS: usize = (1 << 30) - 1024;
@@ -180,7 +181,9 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
         counts: Counts::default(),
     };
     m.sharp = Sharp::find(plc, &m.feat, opts.radius_edge);
+    stage(Stage::Delaunay, || (0, n as u64))?;
     m.insert_input_points()?;
+    stage(Stage::Boundary, || (0, m.queued()))?;
     // Every subsegment and subface starts on the queue; taking one checks it.
     let mut keys: Vec<u64> = m.feat.subsegs.keys().copied().collect();
     keys.sort_unstable();
@@ -194,6 +197,7 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
         m.keep_input_surface()?;
     }
     if m.wants_quality() {
+        stage(Stage::Refining, || (m.steiner, m.steiner))?;
         for t in 0..m.tets.num_slots() as u32 {
             m.maybe_queue_tet(t);
         }
@@ -213,6 +217,7 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
     // cannot be left out of the output like those touching the outside: split its subface
     // (the facet point at its circumcentre removes it) and refine again.
     if !m.opts.keep_surface {
+        stage(Stage::Slivers, || (m.steiner, m.steiner))?;
         for _round in 0..8 {
             let faces = m.interior_flat_slivers();
             if faces.is_empty() || !m.complete {
@@ -224,6 +229,7 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
             m.run()?;
         }
     }
+    stage(Stage::Output, || (0, 4 * m.tets.num_slots() as u64))?;
     m.output(plc)
 }
 
@@ -283,7 +289,8 @@ impl Mesher<'_> {
         }
         self.tets.init(first[0], first[1], first[2], first[3]);
         self.hint = self.tets.vertex_tet(first[0]);
-        for &v in &order {
+        for (k, &v) in order.iter().enumerate() {
+            tick(|| (k as u64, order.len() as u64))?;
             if first.contains(&v) {
                 continue;
             }
@@ -479,6 +486,11 @@ impl Mesher<'_> {
         (0..3).all(|k| self.bbox[0][k] <= p[k] && p[k] <= self.bbox[1][k])
     }
 
+    /// Subsegments, subfaces and tets waiting on the work queue (the progress estimate).
+    fn queued(&self) -> u64 {
+        (self.seg_q.len() + self.face_q.len() + self.tet_q.len()) as u64
+    }
+
     fn cap_reached(&self) -> bool {
         self.opts.max_steiner.is_some_and(|c| self.steiner >= c)
     }
@@ -487,6 +499,7 @@ impl Mesher<'_> {
     fn run(&mut self) -> Result<(), Error> {
         let budget = 1u64 << 40;
         for it in 0..budget {
+            tick(|| (self.steiner, self.steiner + self.queued()))?;
             if self.opts.verbose && it % (1 << 12) == (1 << 12) - 1 {
                 let c = &self.counts;
                 eprintln!(
@@ -967,6 +980,7 @@ impl Mesher<'_> {
             let mut found = None;
             let mut agree = true;
             while let Some(t) = stack.pop() {
+                tick(|| (self.steiner, self.steiner + self.queued()))?;
                 comp.push(t);
                 let vs = self.tets.verts(t);
                 for f in 0..4 {
@@ -1015,6 +1029,7 @@ impl Mesher<'_> {
         self.unknown.clear();
         let mut changed = 0;
         for t in 0..self.tets.num_slots() as u32 {
+            tick(|| (self.steiner, self.steiner))?;
             if self.tets.alive(t) && old.get(t as usize) != Some(&self.region[t as usize]) {
                 changed += 1;
                 self.maybe_queue_tet(t);
@@ -1040,7 +1055,7 @@ impl Mesher<'_> {
                 self.region[g as usize] = OUTSIDE;
             }
         } else {
-            self.flood(&ghosts, OUTSIDE, &mut seen, &mut stack);
+            self.flood(&ghosts, OUTSIDE, &mut seen, &mut stack)?;
         }
         for (i, h) in plc.holes.iter().enumerate() {
             let t =
@@ -1048,12 +1063,12 @@ impl Mesher<'_> {
                     .ok_or(Error::Input(crate::InputError::HoleOutsideDomain {
                         hole: i,
                     }))?;
-            self.flood(&[t], OUTSIDE, &mut seen, &mut stack);
+            self.flood(&[t], OUTSIDE, &mut seen, &mut stack)?;
         }
         for (i, r) in plc.regions.iter().enumerate() {
             if let Some(t) = self.seed_tet(r.point) {
                 if !seen[t as usize] {
-                    self.flood(&[t], i as u32 + 1, &mut seen, &mut stack);
+                    self.flood(&[t], i as u32 + 1, &mut seen, &mut stack)?;
                 }
             } else {
                 return Err(Error::Input(crate::InputError::RegionOutsideDomain {
@@ -1109,7 +1124,13 @@ impl Mesher<'_> {
         }
     }
 
-    fn flood(&mut self, seeds: &[u32], reg: u32, seen: &mut [bool], stack: &mut Vec<u32>) {
+    fn flood(
+        &mut self,
+        seeds: &[u32],
+        reg: u32,
+        seen: &mut [bool],
+        stack: &mut Vec<u32>,
+    ) -> Result<(), Error> {
         stack.clear();
         for &s in seeds {
             if !seen[s as usize] {
@@ -1118,6 +1139,7 @@ impl Mesher<'_> {
             }
         }
         while let Some(t) = stack.pop() {
+            tick(|| (self.steiner, self.steiner))?;
             self.region[t as usize] = reg;
             let vs = self.tets.verts(t);
             for f in 0..4 {
@@ -1133,6 +1155,7 @@ impl Mesher<'_> {
                 stack.push(n);
             }
         }
+        Ok(())
     }
 
     /// Rounding slivers at the domain's boundary, which the output leaves out: tets inside
@@ -1201,7 +1224,10 @@ impl Mesher<'_> {
         let mut index = vec![NONE; ns];
         let mut tets = Vec::new();
         let mut slots = Vec::new();
+        // Progress: four passes over at most `ns` tets.
+        let work = |pass: usize, i: usize| ((pass * ns + i) as u64, 4 * ns as u64);
         for t in 0..ns as u32 {
+            tick(|| work(0, t as usize))?;
             if self.tets.alive(t)
                 && !self.tets.is_ghost(t)
                 && self.region[t as usize] != OUTSIDE
@@ -1220,6 +1246,7 @@ impl Mesher<'_> {
         }
         let mut neighbors = Vec::with_capacity(tets.len());
         for (i, &t) in slots.iter().enumerate() {
+            tick(|| work(1, i))?;
             let mut nb = [NONE; 4];
             for (k, &x) in tets[i].iter().enumerate() {
                 // The face opposite x in the output order is the kernel face opposite x.
@@ -1249,7 +1276,8 @@ impl Mesher<'_> {
         // part of the mesh): the subfaces among the faces of the output tets; and the boundary
         // faces that a dropped rounding sliver uncovered, which lie in its facet.
         let mut faces: Vec<([u32; 3], u32)> = Vec::new();
-        for &t in &slots {
+        for (i, &t) in slots.iter().enumerate() {
+            tick(|| work(2, i))?;
             let vs = self.tets.verts(t);
             for f in 0..4 {
                 let fv = face_of(vs, f);
@@ -1298,7 +1326,8 @@ impl Mesher<'_> {
         }
         let mut vertices: Vec<[f64; 3]> = self.pts[..self.num_input].to_vec();
         let mut markers: Vec<i32> = vertex_markers[..self.num_input].to_vec();
-        for t in &tets {
+        for (i, t) in tets.iter().enumerate() {
+            tick(|| work(3, i))?;
             for &v in t {
                 if new_id[v as usize] == NONE {
                     new_id[v as usize] = vertices.len() as u32;

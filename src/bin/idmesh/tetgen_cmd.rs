@@ -5,9 +5,12 @@ use std::time::{Duration, Instant};
 
 use idmesh::input3d::check_plc;
 use idmesh::io::tetgen::{read_input, TetgenInput};
+use idmesh::progress::observe;
 use idmesh::switches::tetgen::{self as tetgen_switches, renumber, resolve, say, write_outputs};
 use idmesh::switches::tetgen::{Parsed, TetSwitches};
 use idmesh::{delaunay3d, tetrahedralize, Error, TetMesh};
+
+use crate::progress_ui::{catch_interrupt, check_interrupt, Outputs, Progress};
 
 /// The help text of `idmesh tetgen --help`.
 pub const HELP: &str = "\
@@ -69,10 +72,13 @@ pub fn main(args: &[String]) -> Result<(), String> {
 
 fn run(sw: &TetSwitches, file: &str) -> Result<(), String> {
     let files = resolve(file, sw);
+    catch_interrupt()?;
+    let progress = Progress::new(sw.quiet || sw.verbose);
     let start = Instant::now();
     say(sw, format_args!("Opening {}.", files.input));
     let path = Path::new(&files.input);
     let input = read_input(path).map_err(|e| e.to_string())?;
+    check_interrupt()?;
     let read_time = start.elapsed();
     let base = input.base;
 
@@ -84,10 +90,13 @@ fn run(sw: &TetSwitches, file: &str) -> Result<(), String> {
 
     let mesh_start = Instant::now();
     let mesh = if files.plc {
-        tetrahedralize(&input.plc, &sw.options())
+        let mut opts = sw.options();
+        opts.progress = Some(progress.callback());
+        tetrahedralize(&input.plc, &opts)
     } else {
         // A point set has no features to pass markers on: the input's markers are copied.
-        delaunay3d(&input.plc.points).map(|mut m| {
+        let f = progress.callback();
+        observe(Some(&f), || delaunay3d(&input.plc.points)).map(|mut m| {
             let markers = &input.plc.point_markers;
             if m.vertex_markers.len() >= markers.len() {
                 m.vertex_markers[..markers.len()].copy_from_slice(markers);
@@ -113,14 +122,22 @@ fn run(sw: &TetSwitches, file: &str) -> Result<(), String> {
 
     let write_start = Instant::now();
     let out_base = if sw.zero_based { 0 } else { base };
-    write_outputs(
+    // The bar goes before the file names are printed.
+    progress.finish();
+    let outputs = Outputs::before_writing(&files.out_stem);
+    let written = write_outputs(
         sw,
         &files.out_stem,
         files.plc,
         !input.plc.point_markers.is_empty(),
         &mesh,
         out_base,
-    )?;
+    )
+    .and_then(|()| check_interrupt());
+    if written.is_err() && crate::progress_ui::interrupted() {
+        outputs.remove_written();
+    }
+    written?;
     let write_time = write_start.elapsed();
     if sw.verbose && !sw.quiet {
         statistics(&input, &mesh, [read_time, mesh_time, write_time]);

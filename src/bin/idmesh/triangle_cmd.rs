@@ -13,6 +13,7 @@ use idmesh::switches::triangle::{output_segments, parse_command_line, Parsed, Sw
 use idmesh::{triangulate, Error, InputError, TriMesh};
 
 use crate::names::{self, Files};
+use crate::progress_ui::{catch_interrupt, check_interrupt, Outputs, Progress};
 
 /// The switches `idmesh triangle` honours; the others Triangle knows are refused by name.
 const HONOURED: &[&str] = &[
@@ -74,6 +75,8 @@ fn say(sw: &Switches, text: std::fmt::Arguments<'_>) {
 
 fn run(sw: &Switches, file: &str) -> Result<(), String> {
     let files = names::resolve(file, sw.poly);
+    catch_interrupt()?;
+    let progress = Progress::new(sw.quiet || sw.verbose);
     let start = Instant::now();
     say(sw, format_args!("Opening {}.", files.input));
     let path = std::path::Path::new(&files.input);
@@ -83,9 +86,11 @@ fn run(sw: &Switches, file: &str) -> Result<(), String> {
         read_node(path)
     };
     let input = input.map_err(|e| e.to_string())?;
+    check_interrupt()?;
     let read_time = start.elapsed();
 
-    let opts = sw.options(files.poly);
+    let mut opts = sw.options(files.poly);
+    opts.progress = Some(progress.callback());
     let mesh_start = Instant::now();
     let mesh = triangulate(&input.pslg, &opts).map_err(|e| describe(&e, &input, &files.input))?;
     let mesh_time = mesh_start.elapsed();
@@ -100,7 +105,14 @@ fn run(sw: &Switches, file: &str) -> Result<(), String> {
 
     let write_start = Instant::now();
     let base = if sw.zero_based { 0 } else { input.base };
-    write_outputs(sw, &files, &input, &mesh, base)?;
+    // The bar goes before the file names are printed.
+    progress.finish();
+    let outputs = Outputs::before_writing(&files.out_stem);
+    let written = write_outputs(sw, &files, &input, &mesh, base).and_then(|()| check_interrupt());
+    if written.is_err() && crate::progress_ui::interrupted() {
+        outputs.remove_written();
+    }
+    written?;
     let write_time = write_start.elapsed();
     if sw.verbose && !sw.quiet {
         statistics(&input, &mesh, [read_time, mesh_time, write_time]);

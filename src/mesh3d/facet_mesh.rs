@@ -418,8 +418,7 @@ impl FacetMesh {
                 let k = (0..3).find(|&k| is_bound(v[k])).unwrap_or(0);
                 // As a ghost triangle of the kernel: beyond its finite edge, or on it.
                 let (x, y) = (self.pt(v[next(k)], pts), self.pt(v[prev(k)], pts));
-                let o = self.geom.orient(x, y, p);
-                o > 0.0 || (o == 0.0 && self.geom.strictly_between(x, y, p))
+                self.geom.beyond_hull_edge(x, y, p)
             }
             2 => {
                 let k = (0..3).find(|&k| !is_bound(v[k])).unwrap_or(0);

@@ -50,6 +50,13 @@ pub struct idm_options3d {
     /// are not met where meeting them would need a point on or next to the surface (see the
     /// Rust `Options3::keep_surface`). Default 0.
     pub keep_surface: i32,
+    /// Minimum dihedral angle target, degrees (TetGen's `-q<ratio>/<angle>`), applied when
+    /// `radius_edge > 0`: slivers (a dihedral angle below it or above 180 minus it) are removed
+    /// by Delaunay refinement, so the mesh stays Delaunay; tetrahedra next to small input
+    /// angles are exempt. 0 turns sliver removal off; must be from 0 to 70 (not NaN).
+    /// Default 15 (`DEFAULT_MIN_DIHEDRAL` of the Rust library). Added in 0.3.0: a caller's
+    /// older struct gets the default.
+    pub min_dihedral: f64,
 }
 
 /// Quality figures of the current mesh (see `idm_mesher3d_stats`).
@@ -155,7 +162,8 @@ pub unsafe extern "C" fn idm_options3d_default_sized(out: *mut idm_options3d, st
 
 // SAFETY: `#[repr(C)]`, `struct_size: usize` first, only integer and float fields.
 unsafe impl SizedOptions for idm_options3d {
-    const BASELINE: usize = size_of::<idm_options3d>();
+    /// The 0.2.0 struct ended before `min_dihedral`.
+    const BASELINE: usize = std::mem::offset_of!(idm_options3d, min_dihedral);
     const NAME: &'static str = "idm_options3d";
 
     fn defaults() -> Self {
@@ -169,6 +177,9 @@ unsafe impl SizedOptions for idm_options3d {
             max_steiner: steiner_cap_to_c(d.max_steiner),
             verbose: d.verbose.into(),
             keep_surface: d.keep_surface.into(),
+            min_dihedral: d
+                .min_dihedral
+                .unwrap_or(crate::mesh3d::DEFAULT_MIN_DIHEDRAL),
         }
     }
 }
@@ -394,7 +405,11 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
     unsafe {
         change(m, |m| {
             let o = read_options(opts)?;
-            reject_nan(&[("radius_edge", o.radius_edge), ("max_volume", o.max_volume)])?;
+            reject_nan(&[
+                ("radius_edge", o.radius_edge),
+                ("max_volume", o.max_volume),
+                ("min_dihedral", o.min_dihedral),
+            ])?;
             m.opts = Options3 {
                 radius_edge: positive(o.radius_edge),
                 max_volume: positive(o.max_volume),
@@ -405,6 +420,7 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
                 keep_surface: o.keep_surface != 0,
                 merge_coplanar: false,
                 verbose: o.verbose != 0,
+                min_dihedral: Some(o.min_dihedral),
             };
             Ok(())
         })

@@ -13,12 +13,15 @@
 //! * for each, the would-be Bowyer–Watson cavity is found (exact `insphere`, nothing changes)
 //!   and the new tetrahedra inside the domain it would make are measured; a candidate whose
 //!   cavity would cross or whose point would encroach a subface or subsegment is skipped;
-//! * the first candidate that makes no new tetrahedron below the target is taken, else the
-//!   best one; when every candidate encroaches, the circumcentre goes the way of a bad
-//!   tetrahedron's (`Mesher::take_tet`): inserted provisionally, and if refused, the encroached
-//!   subsegments and subfaces are split instead under the lazy rules that protect the
-//!   features (queued `ForTet`, dropped once the sliver is gone). So slivers at the boundary
-//!   are removed by refining the boundary, as bad tetrahedra are.
+//! * the first candidate that makes no new tetrahedron below the target and none above the
+//!   radius-edge bound (which would be refined in turn, making more points) is taken, else the
+//!   best one by those two criteria. When every candidate encroaches, the one demanding the
+//!   least splitting goes the way of a bad tetrahedron's circumcentre (`Mesher::take_tet`):
+//!   inserted provisionally, refused, and the encroached subsegments and subfaces are split
+//!   instead under the lazy rules that protect the features (queued `ForTet`, dropped once the
+//!   sliver is gone; the sliver is queued again and, if it survives, its circumcentre is
+//!   tried). So slivers at the boundary are removed by refining the boundary, as bad
+//!   tetrahedra are, and a point outside the domain is never inserted.
 //!
 //! Every point goes in through `insert3d`, a Bowyer–Watson insertion with exact predicates:
 //! the mesh stays the Delaunay tetrahedralization of its vertices and the features stay
@@ -38,7 +41,7 @@
 
 use super::{face_of, Mesher, EDGES, UNKNOWN};
 use crate::error::Error;
-use crate::geometry::{dist2_3, tet_circumcenter, tet_dihedral_range};
+use crate::geometry::{dist2_3, tet_circumcenter, tet_dihedral_range, tet_radius_edge};
 use crate::mesh3d::store::{Located, GHOST};
 use crate::predicates::{in_diametral_ball_seg3, in_diametral_ball_tri, insphere, orient3d};
 
@@ -121,6 +124,7 @@ impl Mesher<'_> {
         };
         let budget = BUDGET_FACTOR * self.tets.num_vertices() as u64 + 1024;
         let mut counts = SliverCounts::default();
+
         let mut exhausted = false;
         'rounds: for round in 0..MAX_ROUNDS {
             let (list, _) = self.collect_slivers(target);
@@ -184,7 +188,9 @@ impl Mesher<'_> {
         let r = dist2_3(cc, c[0]).sqrt();
         let o = orient3d(c[0], c[1], c[2], c[3]);
         let mut rng = Rng::new(vs);
-        let mut best: Option<(f64, [f64; 3])> = None;
+        let mut best: Option<((bool, std::cmp::Reverse<u32>, f64), [f64; 3])> = None;
+        // When every candidate encroaches: the one demanding the least splitting.
+        let mut least: Option<(u32, [f64; 3])> = None;
         for k in 0..=CANDIDATES {
             let p = if k == 0 {
                 cc
@@ -198,69 +204,116 @@ impl Mesher<'_> {
             {
                 continue;
             }
-            let Some(score) = self.probe(t, p) else {
-                continue;
-            };
-            if best.map_or(true, |b| score > b.0) {
-                best = Some((score, p));
-            }
-            if score >= target {
-                break;
+            match self.probe(t, p) {
+                Probe::Fits(worst, bad) => {
+                    // Rank: meets the target, then fewest new tets above the radius-edge
+                    // bound (each would be refined in turn), then the best angle.
+                    let key = (worst >= target, std::cmp::Reverse(bad), worst);
+                    if best.map_or(true, |b| key > b.0) {
+                        best = Some((key, p));
+                    }
+                    if worst >= target && bad == 0 {
+                        break;
+                    }
+                }
+                Probe::Encroaches(d) => {
+                    if least.map_or(true, |l| d < l.0) {
+                        least = Some((d, p));
+                    }
+                }
+                Probe::Unusable => {}
             }
         }
-        match best {
-            Some((_, p)) => self.place_for_tet(t, vs, c, p),
-            None => self.take_tet(t, vs),
+        match (best, least) {
+            (Some((_, p)), _) => self.place_for_tet(t, vs, c, p),
+            (None, Some((_, p))) => self.place_for_tet(t, vs, c, p),
+            (None, None) => self.take_tet(t, vs),
         }
     }
 
-    /// The worst angle (the smallest of each tet's smallest dihedral and 180° minus its
-    /// largest) among the tets inside the domain that inserting `p` would make, `p` being in
-    /// conflict with tet `t`; `None` when `p` would be refused (it encroaches a subsegment or
-    /// subface, its cavity crosses a subface or leaves the hull) or lies on a vertex. The mesh
-    /// is not changed.
-    fn probe(&mut self, t: u32, p: [f64; 3]) -> Option<f64> {
+    /// What inserting `p` (in conflict with tet `t`) would do, found on the would-be cavity
+    /// without changing the mesh: refused for encroaching (a subsegment or subface holds `p`
+    /// in its diametral ball, or the cavity crosses a subface), unusable (on a vertex, or
+    /// outside the hull), or accepted with the worst angle of its new tets inside the domain
+    /// (the smallest of each one's smallest dihedral and 180° minus its largest).
+    fn probe(&mut self, t: u32, p: [f64; 3]) -> Probe {
         let start = match self.tets.locate(p, t) {
             Located::InTet(s) => s,
-            Located::Vertex(_) => return None,
+            Located::Vertex(_) => return Probe::Unusable,
         };
         if !self.tets.find_cavity(p, start) || !self.tets.in_cavity(t) {
             self.tets.cancel_cavity();
-            return None;
+            return Probe::Unusable;
         }
-        let refused = self.tets.cavity().iter().any(|&u| {
+        // How much splitting the point would demand: subfaces it encroaches or whose cavity
+        // crosses them count 1, subsegments 3 (a split there changes every facet through
+        // the edge). Each is counted once per cavity tet holding it: a rough measure only
+        // used to rank candidates.
+        let mut demand = 0u32;
+        for &u in self.tets.cavity() {
             let vs = self.tets.verts(u);
             if vs.contains(&GHOST) {
-                return true; // the point is outside the hull, hence outside the domain
+                // Outside the hull, hence outside the domain.
+                self.tets.cancel_cavity();
+                return Probe::Unusable;
             }
-            (0..4).any(|f| {
+            for f in 0..4 {
                 let fv = face_of(vs, f);
-                self.feat.subface(fv).is_some() && {
+                if self.feat.subface(fv).is_some() {
                     let [a, b, c] = fv.map(|x| self.pts[x as usize]);
-                    self.tets.in_cavity(self.tets.neighbor(u, f).0)
+                    if self.tets.in_cavity(self.tets.neighbor(u, f).0)
                         || in_diametral_ball_tri(a, b, c, p)
+                    {
+                        demand += 1;
+                    }
                 }
-            }) || EDGES.iter().any(|&(i, j)| {
-                self.feat.subseg(vs[i], vs[j]).is_some()
+            }
+            for &(i, j) in &EDGES {
+                if self.feat.subseg(vs[i], vs[j]).is_some()
                     && in_diametral_ball_seg3(self.pts[vs[i] as usize], self.pts[vs[j] as usize], p)
-            })
-        });
-        let mut worst = 180.0f64;
-        if !refused {
-            for &h in self.tets.cavity_boundary() {
-                let (u, f) = (h / 4, (h % 4) as usize);
-                let fv = face_of(self.tets.verts(u), f);
-                if fv.contains(&GHOST) || self.region_of(u) >= UNKNOWN {
-                    continue;
+                {
+                    demand += 3;
                 }
-                let [a, b, c] = fv.map(|x| self.pts[x as usize]);
-                let (lo, hi) = tet_dihedral_range([a, b, c, p]);
-                worst = worst.min(lo).min(180.0 - hi);
+            }
+        }
+        if demand > 0 {
+            self.tets.cancel_cavity();
+            return Probe::Encroaches(demand);
+        }
+        let mut worst = 180.0f64;
+        let mut bad = 0u32;
+
+        for &h in self.tets.cavity_boundary() {
+            let (u, f) = (h / 4, (h % 4) as usize);
+            let fv = face_of(self.tets.verts(u), f);
+            if fv.contains(&GHOST) || self.region_of(u) >= UNKNOWN {
+                continue;
+            }
+            let [a, b, c] = fv.map(|x| self.pts[x as usize]);
+            let (lo, hi) = tet_dihedral_range([a, b, c, p]);
+            worst = worst.min(lo).min(180.0 - hi);
+            if self
+                .opts
+                .radius_edge
+                .is_some_and(|rho| tet_radius_edge([a, b, c, p]) > rho)
+            {
+                bad += 1;
             }
         }
         self.tets.cancel_cavity();
-        (!refused).then_some(worst)
+        Probe::Fits(worst, bad)
     }
+}
+
+/// What inserting a candidate point would do (see [`Mesher::probe`]).
+enum Probe {
+    /// It goes in; the worst angle of the new tets inside the domain, and how many of them
+    /// exceed the radius-edge bound (each would be refined in turn).
+    Fits(f64, u32),
+    /// It would be refused for encroaching, demanding about this much splitting.
+    Encroaches(u32),
+    /// It lies on a vertex or outside the hull.
+    Unusable,
 }
 
 /// A small deterministic generator (xorshift64*) for the candidate points.

@@ -188,7 +188,7 @@ impl Mesher<'_> {
         let r = dist2_3(cc, c[0]).sqrt();
         let o = orient3d(c[0], c[1], c[2], c[3]);
         let mut rng = Rng::new(vs);
-        let mut best: Option<((bool, std::cmp::Reverse<u32>, f64), [f64; 3])> = None;
+        let mut best: Option<(Rank, [f64; 3])> = None;
         // When every candidate encroaches: the one demanding the least splitting.
         let mut least: Option<(u32, [f64; 3])> = None;
         for k in 0..=CANDIDATES {
@@ -304,6 +304,10 @@ impl Mesher<'_> {
         Probe::Fits(worst, bad)
     }
 }
+
+/// How a candidate that goes in ranks: meets the target, fewest new tets above the radius-edge
+/// bound, best worst angle (greater is better).
+type Rank = (bool, std::cmp::Reverse<u32>, f64);
 
 /// What inserting a candidate point would do (see [`Mesher::probe`]).
 enum Probe {

@@ -1233,6 +1233,66 @@ mod tests {
     }
 
     #[test]
+    fn min_dihedral_option_removes_slivers_and_old_structs_get_the_default() {
+        let o = options(1.414, 0.0005);
+        assert_eq!(o.min_dihedral, crate::mesh3d::DEFAULT_MIN_DIHEDRAL);
+        let run = |o: &idm_options3d| -> idm_stats3d {
+            let m = Handle::new();
+            load(&m, &cube());
+            let mut s = std::mem::MaybeUninit::<idm_stats3d>::uninit();
+            unsafe {
+                assert_eq!(idm_mesher3d_set_options(m.0, o), IDM_OK);
+                assert_eq!(idm_mesher3d_refine(m.0), IDM_OK, "{}", last_error());
+                assert_eq!(idm_mesher3d_validate(m.0), IDM_OK, "{}", last_error());
+                assert_eq!(idm_mesher3d_stats(m.0, s.as_mut_ptr()), IDM_OK);
+                s.assume_init()
+            }
+        };
+        let on = run(&o);
+        assert!(
+            on.min_dihedral >= 15.0 && on.max_dihedral <= 165.0,
+            "{} {}",
+            on.min_dihedral,
+            on.max_dihedral
+        );
+        let mut off = o;
+        off.min_dihedral = 0.0;
+        let s = run(&off);
+        assert!(
+            s.min_dihedral < 15.0,
+            "slivers without removal: {}",
+            s.min_dihedral
+        );
+        let mut t = o;
+        t.min_dihedral = 20.0;
+        assert!(run(&t).min_dihedral >= 20.0);
+        // NaN is refused by set_options, an impossible target by refine.
+        let m = Handle::new();
+        load(&m, &cube());
+        let mut bad = o;
+        bad.min_dihedral = f64::NAN;
+        assert_eq!(
+            unsafe { idm_mesher3d_set_options(m.0, &bad) },
+            IDM_ERR_INVALID_ARGUMENT
+        );
+        assert!(last_error().contains("min_dihedral"), "{}", last_error());
+        bad.min_dihedral = 75.0;
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &bad) }, IDM_OK);
+        assert_ne!(unsafe { idm_mesher3d_refine(m.0) }, IDM_OK);
+        assert!(last_error().contains("dihedral"), "{}", last_error());
+        // A caller built against 0.2.0 (a struct ending before the field) gets the default.
+        let mut old = o;
+        old.struct_size = <idm_options3d as SizedOptions>::BASELINE;
+        old.min_dihedral = 0.0;
+        let mut m = Handle::new();
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &old) }, IDM_OK);
+        assert_eq!(
+            m.get_mut().opts.min_dihedral,
+            Some(crate::mesh3d::DEFAULT_MIN_DIHEDRAL)
+        );
+    }
+
+    #[test]
     fn free_null_is_a_no_op_and_default_null_too() {
         unsafe {
             idm_mesher3d_free(std::ptr::null_mut());

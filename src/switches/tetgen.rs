@@ -102,7 +102,7 @@ fn unsupported(c: char) -> Option<&'static str> {
         'X' => "disabling exact arithmetic",
         'w' => "weighted Delaunay triangulations",
         'R' => "reversing tetrahedron orientation",
-        'O' => "mesh optimization levels",
+        'O' => "non-Delaunay mesh optimization; -q removes slivers keeping the mesh Delaunay",
         'o' => "second-order tetrahedra",
         's' => "piecewise smooth complexes",
         'l' | 'L' | 'b' => "choosing the insertion algorithm",

@@ -134,6 +134,9 @@ impl Mesher<'_> {
             counts.rounds = round + 1;
             let before = self.steiner;
             for (t, vs) in list {
+                if self.cap_reached() {
+                    self.complete = false;
+                }
                 if !self.complete {
                     break 'rounds; // the Steiner cap was reached
                 }

@@ -436,6 +436,15 @@ typedef struct idm_options3d {
    * Rust `Options3::keep_surface`). Default 0.
    */
   int32_t keep_surface;
+  /**
+   * Minimum dihedral angle target, degrees (TetGen's `-q<ratio>/<angle>`), applied when
+   * `radius_edge > 0`: slivers (a dihedral angle below it or above 180 minus it) are removed
+   * by Delaunay refinement, so the mesh stays Delaunay; tetrahedra next to small input
+   * angles are exempt. 0 turns sliver removal off; must be from 0 to 70 (not NaN).
+   * Default 15 (`DEFAULT_MIN_DIHEDRAL` of the Rust library). Added in 0.3.0: a caller's
+   * older struct gets the default.
+   */
+  double min_dihedral;
 } idm_options3d;
 
 /**

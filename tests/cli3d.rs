@@ -200,7 +200,7 @@ fn bad_switches_exit_1_with_a_message_naming_them_and_write_nothing() {
         (vec!["-pc", "3d_cube.poly"], "convex hull"),
         (vec!["-pr", "3d_cube.poly"], "-r"),
         (vec!["-pa0", "3d_cube.poly"], "greater than zero"),
-        (vec!["-pq1.2/15", "3d_cube.poly"], "dihedral"),
+        (vec!["-pq1.2/15/170", "3d_cube.poly"], "maximum dihedral"),
         (vec!["-p"], "no input file"),
         (vec!["a.poly", "b.poly"], "more than one"),
         (vec!["--frob", "3d_cube.poly"], "--frob"),
@@ -209,6 +209,37 @@ fn bad_switches_exit_1_with_a_message_naming_them_and_write_nothing() {
         assert!(line.contains(needle), "{args:?}: {line}");
     }
     assert_eq!(d.files(), vec!["3d_cube.poly"], "no output on error");
+}
+
+/// The smallest and largest dihedral angles of the `-V` report.
+fn dihedral_range(out: &Output) -> (f64, f64) {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("Dihedral angles: smallest"))
+        .unwrap_or_else(|| panic!("no dihedral line in {text}"));
+    let nums: Vec<f64> = line
+        .split(' ')
+        .filter_map(|w| w.trim_end_matches(',').parse().ok())
+        .collect();
+    (nums[0], nums[1])
+}
+
+#[test]
+fn q_slash_angle_sets_the_minimum_dihedral_target() {
+    let d = TempDir::new("dihedral");
+    d.example("3d_cube.poly");
+    let (lo, hi) = dihedral_range(&idmesh(&d.0, &["-pq1.414/20a0.0005V", "3d_cube.poly"]));
+    assert!(lo >= 20.0 && hi <= 160.0, "{lo} {hi}");
+    let (lo, hi) = dihedral_range(&idmesh(&d.0, &["-pq1.414a0.0005V", "3d_cube.poly"]));
+    assert!(lo >= 15.0 && hi <= 165.0, "default target: {lo} {hi}");
+    let (lo, _) = dihedral_range(&idmesh(&d.0, &["-pq1.414/0a0.0005V", "3d_cube.poly"]));
+    assert!(lo < 15.0, "/0 turns sliver removal off: {lo}");
 }
 
 #[test]

@@ -51,6 +51,13 @@ pub struct idm_options3d {
     /// are not met where meeting them would need a point on or next to the surface (see the
     /// Rust `Options3::keep_surface`). Default 0.
     pub keep_surface: i32,
+    /// Minimum dihedral angle target, degrees (TetGen's `-q<ratio>/<angle>`), applied when
+    /// `radius_edge > 0`: slivers (a dihedral angle below it or above 180 minus it) are removed
+    /// by Delaunay refinement, so the mesh stays Delaunay; tetrahedra next to small input
+    /// angles are exempt. 0 turns sliver removal off; must be from 0 to 70 (not NaN).
+    /// Default 15 (`DEFAULT_MIN_DIHEDRAL` of the Rust library). Added in 0.3.0: a caller's
+    /// older struct gets the default.
+    pub min_dihedral: f64,
 }
 
 /// Quality figures of the current mesh (see `idm_mesher3d_stats`).
@@ -156,7 +163,8 @@ pub unsafe extern "C" fn idm_options3d_default_sized(out: *mut idm_options3d, st
 
 // SAFETY: `#[repr(C)]`, `struct_size: usize` first, only integer and float fields.
 unsafe impl SizedOptions for idm_options3d {
-    const BASELINE: usize = size_of::<idm_options3d>();
+    /// The 0.2.0 struct ended before `min_dihedral`.
+    const BASELINE: usize = std::mem::offset_of!(idm_options3d, min_dihedral);
     const NAME: &'static str = "idm_options3d";
 
     fn defaults() -> Self {
@@ -170,6 +178,9 @@ unsafe impl SizedOptions for idm_options3d {
             max_steiner: steiner_cap_to_c(d.max_steiner),
             verbose: d.verbose.into(),
             keep_surface: d.keep_surface.into(),
+            min_dihedral: d
+                .min_dihedral
+                .unwrap_or(crate::mesh3d::DEFAULT_MIN_DIHEDRAL),
         }
     }
 }
@@ -396,7 +407,11 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
     unsafe {
         change(m, |m| {
             let o = read_options(opts)?;
-            reject_nan(&[("radius_edge", o.radius_edge), ("max_volume", o.max_volume)])?;
+            reject_nan(&[
+                ("radius_edge", o.radius_edge),
+                ("max_volume", o.max_volume),
+                ("min_dihedral", o.min_dihedral),
+            ])?;
             m.opts = Options3 {
                 radius_edge: positive(o.radius_edge),
                 max_volume: positive(o.max_volume),
@@ -408,6 +423,7 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
                 keep_surface: o.keep_surface != 0,
                 merge_coplanar: false,
                 verbose: o.verbose != 0,
+                min_dihedral: Some(o.min_dihedral),
             };
             Ok(())
         })
@@ -1237,6 +1253,66 @@ mod tests {
         assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
         assert_eq!(m.get().opts.max_steiner, None);
         assert_eq!(m.get().opts.max_volume, Some(0.25));
+    }
+
+    #[test]
+    fn min_dihedral_option_removes_slivers_and_old_structs_get_the_default() {
+        let o = options(1.414, 0.0005);
+        assert_eq!(o.min_dihedral, crate::mesh3d::DEFAULT_MIN_DIHEDRAL);
+        let run = |o: &idm_options3d| -> idm_stats3d {
+            let m = Handle::new();
+            load(&m, &cube());
+            let mut s = std::mem::MaybeUninit::<idm_stats3d>::uninit();
+            unsafe {
+                assert_eq!(idm_mesher3d_set_options(m.0, o), IDM_OK);
+                assert_eq!(idm_mesher3d_refine(m.0), IDM_OK, "{}", last_error());
+                assert_eq!(idm_mesher3d_validate(m.0), IDM_OK, "{}", last_error());
+                assert_eq!(idm_mesher3d_stats(m.0, s.as_mut_ptr()), IDM_OK);
+                s.assume_init()
+            }
+        };
+        let on = run(&o);
+        assert!(
+            on.min_dihedral >= 15.0 && on.max_dihedral <= 165.0,
+            "{} {}",
+            on.min_dihedral,
+            on.max_dihedral
+        );
+        let mut off = o;
+        off.min_dihedral = 0.0;
+        let s = run(&off);
+        assert!(
+            s.min_dihedral < 15.0,
+            "slivers without removal: {}",
+            s.min_dihedral
+        );
+        let mut t = o;
+        t.min_dihedral = 20.0;
+        assert!(run(&t).min_dihedral >= 20.0);
+        // NaN is refused by set_options, an impossible target by refine.
+        let m = Handle::new();
+        load(&m, &cube());
+        let mut bad = o;
+        bad.min_dihedral = f64::NAN;
+        assert_eq!(
+            unsafe { idm_mesher3d_set_options(m.0, &bad) },
+            IDM_ERR_INVALID_ARGUMENT
+        );
+        assert!(last_error().contains("min_dihedral"), "{}", last_error());
+        bad.min_dihedral = 75.0;
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &bad) }, IDM_OK);
+        assert_ne!(unsafe { idm_mesher3d_refine(m.0) }, IDM_OK);
+        assert!(last_error().contains("dihedral"), "{}", last_error());
+        // A caller built against 0.2.0 (a struct ending before the field) gets the default.
+        let mut old = o;
+        old.struct_size = <idm_options3d as SizedOptions>::BASELINE;
+        old.min_dihedral = 0.0;
+        let mut m = Handle::new();
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &old) }, IDM_OK);
+        assert_eq!(
+            m.get_mut().opts.min_dihedral,
+            Some(crate::mesh3d::DEFAULT_MIN_DIHEDRAL)
+        );
     }
 
     #[test]

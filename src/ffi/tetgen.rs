@@ -123,6 +123,8 @@ impl idm_tetgen_switches {
         Ok(TetSwitches {
             plc: self.plc != 0,
             radius_edge: positive(self.radius_edge),
+            // Not in this struct: the library's default target applies with `q`.
+            min_dihedral: None,
             max_volume: positive(self.max_volume),
             region_volume: self.region_volume != 0,
             region_attributes: self.region_attributes != 0,

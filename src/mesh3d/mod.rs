@@ -4,7 +4,8 @@
 //! Pipeline: validate the input; insert every input point into one Bowyer–Watson kernel
 //! ([`store`]); keep a 1D mesh per input edge and a 2D Delaunay mesh per facet, refined lazily
 //! until each appears in the 3D mesh (work queue of Definition 4.1); classify exterior, holes
-//! and regions by flooding up to facets; then remove skinny and oversized tetrahedra (Fig. 9).
+//! and regions by flooding up to facets; then remove skinny and oversized tetrahedra (Fig. 9),
+//! then slivers (`plc/sliver.rs`), keeping the mesh Delaunay.
 
 mod coplanar;
 mod delaunay;
@@ -24,6 +25,7 @@ use std::fmt;
 use std::sync::Arc;
 
 pub use output::{TetMesh, TetStats, DIHEDRAL_BINS};
+pub use plc::sliver::DEFAULT_MIN_DIHEDRAL;
 
 use crate::error::{catch_panic, Error};
 use crate::input3d::Plc;
@@ -80,6 +82,13 @@ pub struct Options3 {
     pub merge_coplanar: bool,
     /// Print progress lines to standard error during long runs. Default: `false`.
     pub verbose: bool,
+    /// Minimum dihedral angle target in degrees (TetGen's `-q<ratio>/<angle>`), used with a
+    /// radius-edge bound: after radius-edge refinement, tetrahedra with a dihedral angle below
+    /// it (or above 180° minus it) are removed by inserting points near their circumcentres,
+    /// so the mesh stays Delaunay (see the sliver module's docs). `None`:
+    /// [`DEFAULT_MIN_DIHEDRAL`]; `Some(0.0)`: no sliver removal. Tetrahedra next to small
+    /// input angles are exempt. Not applied with `keep_surface`. Default: `None`.
+    pub min_dihedral: Option<f64>,
 }
 
 impl fmt::Debug for Options3 {
@@ -95,6 +104,7 @@ impl fmt::Debug for Options3 {
             .field("keep_surface", &self.keep_surface)
             .field("merge_coplanar", &self.merge_coplanar)
             .field("verbose", &self.verbose)
+            .field("min_dihedral", &self.min_dihedral)
             .finish()
     }
 }
@@ -140,6 +150,14 @@ fn check_options(opts: &Options3) -> Result<(), Error> {
         if !(r.is_finite() && r >= 1.0) {
             return Err(Error::InvalidOption(format!(
                 "radius-edge bound {r} must be a number of at least 1.0"
+            )));
+        }
+    }
+    if let Some(a) = opts.min_dihedral {
+        if !(a.is_finite() && (0.0..=plc::sliver::MAX_MIN_DIHEDRAL).contains(&a)) {
+            return Err(Error::InvalidOption(format!(
+                "minimum dihedral angle {a} must be a number from 0 to {} degrees",
+                plc::sliver::MAX_MIN_DIHEDRAL
             )));
         }
     }

@@ -16,6 +16,7 @@ use std::collections::VecDeque;
 
 mod flip;
 mod keep;
+pub(super) mod sliver;
 
 use super::facet_mesh::{FacetInsertError, FacetMesh};
 use super::features::{ekey, fkey, Features};
@@ -202,6 +203,7 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
             m.maybe_queue_tet(t);
         }
         m.run()?;
+        m.remove_slivers()?;
         // Regions are tracked through refinement (inherited from the cavity, or resolved
         // after conformity was restored); a full classification checks that and requeues any
         // tet whose region it corrects. It should find none; the rounds are a safety net.
@@ -869,6 +871,18 @@ impl Mesher<'_> {
         if crate::predicates::insphere(c[0], c[1], c[2], c[3], cc) * o <= 0.0 {
             cc = [0, 1, 2].map(|k| 0.25 * (c[0][k] + c[1][k] + c[2][k] + c[3][k]));
         }
+        self.place_for_tet(t, vs, c, cc)
+    }
+
+    /// Inserts `cc`, a point inside the circumsphere of tet `t` (vertices `vs`, corners `c`),
+    /// provisionally to remove `t`; when refused, queues the splits it demands and `t` again.
+    fn place_for_tet(
+        &mut self,
+        t: u32,
+        vs: [u32; 4],
+        c: [[f64; 3]; 4],
+        cc: [f64; 3],
+    ) -> Result<(), Error> {
         let m = self.new_vertex(cc)?;
         if self.walled {
             return self.take_tet_walled(t, c, m);

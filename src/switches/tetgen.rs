@@ -28,6 +28,9 @@ pub struct TetSwitches {
     pub plc: bool,
     /// `q[ratio]`: the radius-edge bound (`q` alone, or implied by `a<volume>`: 2.0).
     pub radius_edge: Option<f64>,
+    /// `q<ratio>/<angle>`: the minimum dihedral angle target, degrees (`/0`: no sliver
+    /// removal; not given: the library's default with `q`).
+    pub min_dihedral: Option<f64>,
     /// `a<volume>`: global maximum tetrahedron volume.
     pub max_volume: Option<f64>,
     /// `a` without a number: apply the regional volume bounds of the input.
@@ -99,7 +102,7 @@ fn unsupported(c: char) -> Option<&'static str> {
         'X' => "disabling exact arithmetic",
         'w' => "weighted Delaunay triangulations",
         'R' => "reversing tetrahedron orientation",
-        'O' => "mesh optimization levels",
+        'O' => "non-Delaunay mesh optimization; -q removes slivers keeping the mesh Delaunay",
         'o' => "second-order tetrahedra",
         's' => "piecewise smooth complexes",
         'l' | 'L' | 'b' => "choosing the insertion algorithm",
@@ -165,14 +168,17 @@ pub fn parse_group(arg: &str, sw: &mut TetSwitches) -> Result<(), String> {
             'q' => {
                 let ratio = run_after(&chars, &mut j, plain_number).map(|r| strtod(&r));
                 sw.radius_edge = Some(ratio.unwrap_or(2.0));
-                for part in ["minimum dihedral angle", "maximum dihedral angle"] {
+                for part in 0..2 {
                     if chars.get(j + 1).is_some_and(|c| *c == '/' || *c == ',') {
                         j += 1;
                         let angle = run_after(&chars, &mut j, plain_number).map(|r| strtod(&r));
-                        if angle.unwrap_or(0.0) != 0.0 {
+                        if part == 0 {
+                            // `/` alone reads as 0, as TetGen's strtod does: no target.
+                            sw.min_dihedral = Some(angle.unwrap_or(0.0));
+                        } else if angle.unwrap_or(0.0) != 0.0 {
                             return Err(format!(
-                                "-q: a {part} bound is not supported, only the radius-edge \
-                                 ratio (in '{arg}')"
+                                "-q: a maximum dihedral angle bound is not supported, only the \
+                                 radius-edge ratio and the minimum dihedral angle (in '{arg}')"
                             ));
                         }
                     }
@@ -394,6 +400,7 @@ impl TetSwitches {
     pub fn options(&self) -> Options3 {
         Options3 {
             radius_edge: self.radius_edge,
+            min_dihedral: self.min_dihedral,
             max_volume: self.max_volume,
             region_max_volume: self.region_volume,
             region_attributes: self.region_attributes,
@@ -532,9 +539,32 @@ mod tests {
     #[test]
     fn dihedral_part_and_steiner_limit() {
         let (s, _) = run(&["-pq1.5/0", "x"]).unwrap();
-        assert_eq!(s.radius_edge, Some(1.5));
-        let e = run(&["-pq1.5/10", "x"]).unwrap_err();
-        assert!(e.contains("dihedral") && e.contains("not supported"), "{e}");
+        assert_eq!((s.radius_edge, s.min_dihedral), (Some(1.5), Some(0.0)));
+        assert_eq!(
+            s.options().min_dihedral,
+            Some(0.0),
+            "/0 turns sliver removal off"
+        );
+        let (s, _) = run(&["-pq1.5", "x"]).unwrap();
+        assert_eq!(
+            s.min_dihedral, None,
+            "q alone: the library's default target"
+        );
+        let (s, _) = run(&["-pq1.414/12.5a0.1", "x"]).unwrap();
+        assert_eq!(
+            (s.radius_edge, s.min_dihedral, s.max_volume),
+            (Some(1.414), Some(12.5), Some(0.1))
+        );
+        assert_eq!(s.options().min_dihedral, Some(12.5));
+        let (s, _) = run(&["-pq/18", "x"]).unwrap();
+        assert_eq!((s.radius_edge, s.min_dihedral), (Some(2.0), Some(18.0)));
+        let (s, _) = run(&["-pq1.2,10/0", "x"]).unwrap();
+        assert_eq!((s.radius_edge, s.min_dihedral), (Some(1.2), Some(10.0)));
+        let e = run(&["-pq1.5/10/170", "x"]).unwrap_err();
+        assert!(
+            e.contains("maximum dihedral") && e.contains("not supported"),
+            "{e}"
+        );
         let (s, _) = run(&["-pS120", "x"]).unwrap();
         assert_eq!(s.max_steiner, Some(120));
         let (s, _) = run(&["-pS", "x"]).unwrap();

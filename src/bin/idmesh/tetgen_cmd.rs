@@ -27,6 +27,8 @@ follows the input (0 or 1), or starts at 0 with -z.
 Switches are letters that may be grouped, e.g. -pq1.414a0.1V:
   -p          read a PLC (facets, facet holes, volume holes, regions)
   -q[RATIO]   radius-edge bound (default 2.0; below about 1.2 it may not terminate); implies -p
+  -qRATIO/ANGLE  also the minimum dihedral angle (default 15 with -q, /0: none): slivers
+              are removed by Delaunay refinement, so the mesh stays Delaunay
   -a[VOLUME]  with a number: maximum tetrahedron volume (implies -q); without: the regional
               volume bounds of the input
   -A          write each tetrahedron's regional attribute to the .ele file

@@ -203,6 +203,7 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
             m.maybe_queue_tet(t);
         }
         m.run()?;
+        stage(Stage::Slivers, || (m.steiner, m.steiner))?;
         m.remove_slivers()?;
         // Regions are tracked through refinement (inherited from the cavity, or resolved
         // after conformity was restored); a full classification checks that and requeues any

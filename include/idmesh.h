@@ -188,6 +188,17 @@ typedef enum idm_input_error {
    * facets enclose no volume); `part`: how many such edges there are.
    */
   IDM_INPUT_OPEN_SURFACE = 30,
+  /**
+   * `item` and `other`: the points of the first facet edge that three or more facets share
+   * (the facets enclose no volume and the surface is not manifold); `part`: how many such
+   * edges there are.
+   */
+  IDM_INPUT_NON_MANIFOLD_EDGE = 31,
+  /**
+   * `item`: a non-planar surface polygon that cannot be triangulated on its own vertices
+   * (`surface_input` only).
+   */
+  IDM_INPUT_UNTRIANGULABLE_POLYGON = 32,
 } idm_input_error;
 
 /**

@@ -18,12 +18,14 @@ mod plc;
 #[cfg(test)]
 mod plc_tests;
 pub mod store;
+pub mod surface;
 mod validate;
 
 use std::fmt;
 use std::sync::Arc;
 
 pub use output::{TetMesh, TetStats, DIHEDRAL_BINS};
+pub use surface::{repair_surface, SurfaceRepair, SurfaceWarning};
 
 use crate::error::{catch_panic, Error};
 use crate::input3d::Plc;

@@ -3,11 +3,13 @@
 use std::path::Path;
 use std::time::{Duration, Instant};
 
+use idmesh::error::Item;
 use idmesh::input3d::check_plc;
 use idmesh::io::tetgen::{read_input, TetgenInput};
+use idmesh::mesh3d::repair_surface;
 use idmesh::switches::tetgen::{self as tetgen_switches, renumber, resolve, say, write_outputs};
 use idmesh::switches::tetgen::{Parsed, TetSwitches};
-use idmesh::{delaunay3d, tetrahedralize, Error, TetMesh};
+use idmesh::{delaunay3d, tetrahedralize, Error, Plc, TetMesh};
 
 /// The help text of `idmesh tetgen --help`.
 pub const HELP: &str = "\
@@ -73,18 +75,39 @@ fn run(sw: &TetSwitches, file: &str) -> Result<(), String> {
     say(sw, format_args!("Opening {}.", files.input));
     let path = Path::new(&files.input);
     let input = read_input(path).map_err(|e| e.to_string())?;
-    let read_time = start.elapsed();
     let base = input.base;
+    let repair = if is_surface(&files.input) {
+        let r = repair_surface(&input.plc).map_err(|e| describe(&e, &input, &files.input))?;
+        if !sw.quiet {
+            for w in &r.warnings {
+                eprintln!(
+                    "idmesh: warning: {}: {}",
+                    files.input,
+                    w.message(base as usize)
+                );
+            }
+        }
+        Some(r)
+    } else {
+        None
+    };
+    // The error of a run on the repaired surface, in the file's numbering.
+    let told = |e: Error| {
+        let e = repair.as_ref().map_or(e.clone(), |r| r.error(e));
+        describe(&e, &input, &files.input)
+    };
+    let plc = repair.as_ref().map_or(&input.plc, |r| &r.plc);
+    let read_time = start.elapsed();
 
     if sw.detect {
-        check_plc(&input.plc).map_err(|e| describe(&e, base, &files.input))?;
+        check_plc(plc).map_err(told)?;
         say(sw, format_args!("No intersections or bad facets found."));
         return Ok(());
     }
 
     let mesh_start = Instant::now();
     let mesh = if files.plc {
-        tetrahedralize(&input.plc, &sw.options())
+        tetrahedralize(plc, &sw.options())
     } else {
         // A point set has no features to pass markers on: the input's markers are copied.
         delaunay3d(&input.plc.points).map(|mut m| {
@@ -95,7 +118,7 @@ fn run(sw: &TetSwitches, file: &str) -> Result<(), String> {
             m
         })
     };
-    let mesh = mesh.map_err(|e| describe(&e, base, &files.input))?;
+    let mesh = mesh.map_err(told)?;
     let mesh_time = mesh_start.elapsed();
     if !mesh.complete {
         // Printed even with -Q: the files are written but miss the requested bounds.
@@ -117,27 +140,53 @@ fn run(sw: &TetSwitches, file: &str) -> Result<(), String> {
         sw,
         &files.out_stem,
         files.plc,
-        !input.plc.point_markers.is_empty(),
+        !plc.point_markers.is_empty(),
         &mesh,
         out_base,
     )?;
     let write_time = write_start.elapsed();
     if sw.verbose && !sw.quiet {
-        statistics(&input, &mesh, [read_time, mesh_time, write_time]);
+        statistics(plc, &mesh, [read_time, mesh_time, write_time]);
     }
     Ok(())
 }
 
-/// A one-line message for a mesher error, with item numbers as in the input file.
-fn describe(e: &Error, base: u32, file: &str) -> String {
+/// Whether `file` is a surface mesh (repaired as the README's "Surface input" says), not a
+/// `.node`, `.poly` or `.smesh` file (taken as given, as in TetGen).
+fn is_surface(file: &str) -> bool {
+    let ext = Path::new(file)
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase());
+    matches!(ext.as_deref(), Some("off" | "stl" | "ply" | "mesh" | "msh"))
+}
+
+/// A one-line message for a mesher error, with item numbers as in the input file (and the
+/// line of the first facet it names, when the reader kept it).
+fn describe(e: &Error, input: &TetgenInput, file: &str) -> String {
     match e {
-        Error::Input(ie) => format!("{file}: invalid input: {}", renumber(ie, base as usize)),
+        Error::Input(ie) => {
+            let first = std::cell::Cell::new(None);
+            ie.map_items(&|kind, i| {
+                if kind == Item::Facet && first.get().is_none() {
+                    first.set(Some(i));
+                }
+                i
+            });
+            let at = first
+                .get()
+                .and_then(|f| input.facet_lines.get(f))
+                .map_or(String::new(), |l| format!(" (line {l})"));
+            format!(
+                "{file}: invalid input: {}{at}",
+                renumber(ie, input.base as usize)
+            )
+        }
         other => format!("{file}: {other}"),
     }
 }
 
-fn statistics(input: &TetgenInput, mesh: &TetMesh, [read, meshing, write]: [Duration; 3]) {
-    let p = &input.plc;
+fn statistics(p: &Plc, mesh: &TetMesh, [read, meshing, write]: [Duration; 3]) {
     let s = mesh.stats();
     println!();
     println!(

@@ -382,6 +382,14 @@ typedef struct idm_options3d {
    * Rust `Options3::keep_surface`). Default 0.
    */
   int32_t keep_surface;
+  /**
+   * Take the facets as a polygon surface mesh and repair it before meshing, as the README's
+   * "Surface input" says: exact duplicate points merged, zero-area polygons and points on
+   * no facet or segment dropped, non-planar polygons triangulated on their own vertices.
+   * The output vertices are then the kept input points in input order (coordinates
+   * unchanged), then the Steiner points; error indices name the input's items. Default 0.
+   */
+  int32_t surface_input;
 } idm_options3d;
 
 /**

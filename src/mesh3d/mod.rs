@@ -79,6 +79,13 @@ pub struct Options3 {
     pub merge_coplanar: bool,
     /// Print progress lines to standard error during long runs. Default: `false`.
     pub verbose: bool,
+    /// Take the facets as a polygon surface mesh and repair it first, as
+    /// [`repair_surface`] does (duplicate vertices merged, zero-area polygons and
+    /// unreferenced vertices dropped, non-planar polygons triangulated); errors name the
+    /// input's items. The mesh's vertices are then the kept input points in input order,
+    /// then the Steiner points. The C API's `surface_input`; Rust callers who want the
+    /// warnings and the vertex map call [`repair_surface`] themselves. Default: `false`.
+    pub surface_input: bool,
 }
 
 impl fmt::Debug for Options3 {
@@ -93,6 +100,7 @@ impl fmt::Debug for Options3 {
             .field("keep_surface", &self.keep_surface)
             .field("merge_coplanar", &self.merge_coplanar)
             .field("verbose", &self.verbose)
+            .field("surface_input", &self.surface_input)
             .finish()
     }
 }
@@ -103,6 +111,14 @@ impl fmt::Debug for Options3 {
 /// Returns an error naming the offending item for invalid input. When the Steiner cap is hit the
 /// mesh is still returned (valid and conforming) with `complete == false`.
 pub fn tetrahedralize(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
+    if opts.surface_input {
+        let r = repair_surface(plc)?;
+        let opts = Options3 {
+            surface_input: false,
+            ..opts.clone()
+        };
+        return tetrahedralize(&r.plc, &opts).map_err(|e| r.error(e));
+    }
     catch_panic("", || {
         crate::input3d::check_plc(plc)?;
         check_options(opts)?;

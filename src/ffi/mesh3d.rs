@@ -161,7 +161,8 @@ pub unsafe extern "C" fn idm_options3d_default_sized(out: *mut idm_options3d, st
 
 // SAFETY: `#[repr(C)]`, `struct_size: usize` first, only integer and float fields.
 unsafe impl SizedOptions for idm_options3d {
-    const BASELINE: usize = size_of::<idm_options3d>();
+    // The 0.2.0 struct ended where the first appended field starts.
+    const BASELINE: usize = std::mem::offset_of!(idm_options3d, surface_input);
     const NAME: &'static str = "idm_options3d";
 
     fn defaults() -> Self {
@@ -1566,6 +1567,19 @@ mod tests {
             u[0] * v[1] - u[1] * v[0],
         ];
         0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt()
+    }
+
+    #[test]
+    fn an_options_struct_of_0_2_0_leaves_the_appended_fields_at_their_defaults() {
+        assert_eq!(<idm_options3d as SizedOptions>::BASELINE, 48);
+        let mut o = options(2.0, 0.0);
+        o.surface_input = 1;
+        o.struct_size = 48;
+        let mut m = Handle::new();
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
+        let h = &m.get_mut().opts;
+        assert_eq!(h.radius_edge, Some(2.0));
+        assert!(!h.surface_input, "beyond the caller's struct");
     }
 
     #[test]

@@ -19,7 +19,10 @@ Usage: idmesh tetgen [-SWITCHES] FILE
 
 FILE is FILE.node (a point set) or, with -p, FILE.poly or FILE.smesh (a piecewise linear
 complex); FILE.off, FILE.stl, FILE.ply and FILE.mesh (Medit) are surfaces read as PLCs, and
-those extensions, like .poly and .smesh, imply -p. Outputs are FILE.1.node, FILE.1.ele and
+those extensions, like .poly and .smesh, imply -p. Surface files are repaired first, with a
+warning per kind of repair unless -Q: duplicate vertices merged, zero-area faces and
+unreferenced vertices dropped, non-planar faces triangulated (output vertices: the kept input
+vertices in input order). Outputs are FILE.1.node, FILE.1.ele and
 FILE.1.face (FILE.2.* for FILE.1, ...), FILE.1.edge with -e, FILE.1.neigh with -n. Numbering
 follows the input (0 or 1), or starts at 0 with -z.
 
@@ -47,7 +50,8 @@ Switches are letters that may be grouped, e.g. -pq1.414a0.1V:
   -V          verbose: print counts, volume, quality figures and timings
   -M          do not merge coplanar facets: by default, as in TetGen, exactly coplanar
               neighbouring facets with the same marker are meshed as one facet (the edges
-              between them need not appear in the mesh); never with -Y
+              between them need not appear in the mesh); never with -Y. Duplicate
+              vertices of surface files are merged all the same, as in TetGen
   -k, -g      also write FILE.1.vtk (legacy VTK) / FILE.1.mesh (Medit), as TetGen does
   --format F  also write FILE.1.F: vtk, vtu (VTK XML), msh (Gmsh 4.1) or mesh (Medit)
   -D -J       accepted: idmesh output is always conforming Delaunay and never drops unused

@@ -199,6 +199,17 @@ typedef enum idm_input_error {
    * facets enclose no volume); `part`: how many such edges there are.
    */
   IDM_INPUT_OPEN_SURFACE = 30,
+  /**
+   * `item` and `other`: the points of the first facet edge that three or more facets share
+   * (the facets enclose no volume and the surface is not manifold); `part`: how many such
+   * edges there are.
+   */
+  IDM_INPUT_NON_MANIFOLD_EDGE = 31,
+  /**
+   * `item`: a non-planar surface polygon that cannot be triangulated on its own vertices
+   * (`surface_input` only).
+   */
+  IDM_INPUT_UNTRIANGULABLE_POLYGON = 32,
 } idm_input_error;
 
 /**
@@ -445,6 +456,14 @@ typedef struct idm_options3d {
    * older struct gets the default.
    */
   double min_dihedral;
+  /**
+   * Take the facets as a polygon surface mesh and repair it before meshing, as the README's
+   * "Surface input" says: exact duplicate points merged, zero-area polygons and points on
+   * no facet or segment dropped, non-planar polygons triangulated on their own vertices.
+   * The output vertices are then the kept input points in input order (coordinates
+   * unchanged), then the Steiner points; error indices name the input's items. Default 0.
+   */
+  int32_t surface_input;
 } idm_options3d;
 
 /**

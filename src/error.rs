@@ -218,6 +218,26 @@ pub enum InputError {
         count: usize,
         /// The first few of them, as point indices.
         edges: Vec<[usize; 2]>,
+        /// The facets those first few edges belong to.
+        facets: Vec<usize>,
+    },
+    /// The facets enclose no volume although every facet edge is shared: some edges are
+    /// shared by three or more facets (a non-manifold surface, such as sheets glued along an
+    /// edge) and no closed region is left between them.
+    NonManifoldEdge {
+        /// How many facet edges three or more facets share.
+        count: usize,
+        /// The first of them, as point indices.
+        edge: [usize; 2],
+        /// The first few facets on that edge.
+        facets: Vec<usize>,
+    },
+    /// A polygon of a surface mesh is not planar and cannot be triangulated on its own
+    /// vertices: no projection along a coordinate axis makes it a simple polygon (or it has
+    /// more vertices than the triangulation of non-planar polygons takes).
+    UntriangulablePolygon {
+        /// The facet (the polygon's face in the file).
+        facet: usize,
     },
 }
 
@@ -237,47 +257,78 @@ pub enum Error {
     Cancelled(crate::progress::Stage),
 }
 
+/// The kinds of item an [`InputError`] names, for [`InputError::map_items`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Item {
+    /// A point (vertex) index.
+    Point,
+    /// A segment index.
+    Segment,
+    /// A facet index.
+    Facet,
+    /// A polygon index within a facet.
+    Polygon,
+    /// A hole seed index (of the domain, or of a facet).
+    Hole,
+    /// A region seed index.
+    Region,
+}
+
 impl InputError {
     /// The same error with every item index shifted by `b` (a file's numbering base, 0 or 1);
     /// counts are kept.
     pub fn renumbered(&self, b: usize) -> InputError {
+        self.map_items(&|_, i| i + b)
+    }
+
+    /// The same error with every item index `i` of kind `k` replaced by `f(k, i)` (counts are
+    /// kept): how an error about a repaired or renumbered input is told in the numbering of
+    /// the input as the user gave it.
+    pub fn map_items(&self, f: &dyn Fn(Item, usize) -> usize) -> InputError {
         use InputError::*;
-        let i = |x: u64| x + b as u64;
+        use Item::*;
+        let pt = |x: usize| f(Point, x);
+        let ix = |x: u64| usize::try_from(x).map_or(x, |x| f(Point, x) as u64);
+        let fc = |x: usize| f(Facet, x);
+        let pg = |x: usize| f(Polygon, x);
+        let sg = |x: usize| f(Segment, x);
+        let hl = |x: usize| f(Hole, x);
+        let rg = |x: usize| f(Region, x);
         match self.clone() {
-            NonFinitePoint { point } => NonFinitePoint { point: point + b },
+            NonFinitePoint { point } => NonFinitePoint { point: pt(point) },
             DuplicatePoint { first, second } => DuplicatePoint {
-                first: first + b,
-                second: second + b,
+                first: pt(first),
+                second: pt(second),
             },
             SegmentIndexOutOfRange {
                 segment,
                 index,
                 num_points,
             } => SegmentIndexOutOfRange {
-                segment: segment + b,
-                index: i(index),
+                segment: sg(segment),
+                index: ix(index),
                 num_points,
             },
             ZeroLengthSegment { segment } => ZeroLengthSegment {
-                segment: segment + b,
+                segment: sg(segment),
             },
             DuplicateSegment { first, second } => DuplicateSegment {
-                first: first + b,
-                second: second + b,
+                first: sg(first),
+                second: sg(second),
             },
             CrossingSegments { first, second } => CrossingSegments {
-                first: first + b,
-                second: second + b,
+                first: sg(first),
+                second: sg(second),
             },
-            NonFiniteHole { hole } => NonFiniteHole { hole: hole + b },
-            HoleOutsideDomain { hole } => HoleOutsideDomain { hole: hole + b },
-            NonFiniteRegion { region } => NonFiniteRegion { region: region + b },
-            RegionOutsideDomain { region } => RegionOutsideDomain { region: region + b },
-            CoordinateTooLarge { point } => CoordinateTooLarge { point: point + b },
-            FacetWithoutPolygons { facet } => FacetWithoutPolygons { facet: facet + b },
+            NonFiniteHole { hole } => NonFiniteHole { hole: hl(hole) },
+            HoleOutsideDomain { hole } => HoleOutsideDomain { hole: hl(hole) },
+            NonFiniteRegion { region } => NonFiniteRegion { region: rg(region) },
+            RegionOutsideDomain { region } => RegionOutsideDomain { region: rg(region) },
+            CoordinateTooLarge { point } => CoordinateTooLarge { point: pt(point) },
+            FacetWithoutPolygons { facet } => FacetWithoutPolygons { facet: fc(facet) },
             EmptyPolygon { facet, polygon } => EmptyPolygon {
-                facet: facet + b,
-                polygon: polygon + b,
+                facet: fc(facet),
+                polygon: pg(polygon),
             },
             FacetIndexOutOfRange {
                 facet,
@@ -285,9 +336,9 @@ impl InputError {
                 index,
                 num_points,
             } => FacetIndexOutOfRange {
-                facet: facet + b,
-                polygon: polygon + b,
-                index: i(index),
+                facet: fc(facet),
+                polygon: pg(polygon),
+                index: ix(index),
                 num_points,
             },
             RepeatedVertexInPolygon {
@@ -295,57 +346,72 @@ impl InputError {
                 polygon,
                 vertex,
             } => RepeatedVertexInPolygon {
-                facet: facet + b,
-                polygon: polygon + b,
-                vertex: vertex + b,
+                facet: fc(facet),
+                polygon: pg(polygon),
+                vertex: pt(vertex),
             },
             DegeneratePolygon { facet, polygon } => DegeneratePolygon {
-                facet: facet + b,
-                polygon: polygon + b,
+                facet: fc(facet),
+                polygon: pg(polygon),
             },
-            DegenerateFacet { facet } => DegenerateFacet { facet: facet + b },
+            DegenerateFacet { facet } => DegenerateFacet { facet: fc(facet) },
             NonPlanarFacet { facet, vertex } => NonPlanarFacet {
-                facet: facet + b,
-                vertex: vertex + b,
+                facet: fc(facet),
+                vertex: pt(vertex),
             },
             NonFiniteFacetHole { facet, hole } => NonFiniteFacetHole {
-                facet: facet + b,
-                hole: hole + b,
+                facet: fc(facet),
+                hole: hl(hole),
             },
             FacetHoleOffPlane { facet, hole } => FacetHoleOffPlane {
-                facet: facet + b,
-                hole: hole + b,
+                facet: fc(facet),
+                hole: hl(hole),
             },
             SelfIntersectingFacet {
                 facet,
                 first_polygon,
                 second_polygon,
             } => SelfIntersectingFacet {
-                facet: facet + b,
-                first_polygon: first_polygon + b,
-                second_polygon: second_polygon + b,
+                facet: fc(facet),
+                first_polygon: pg(first_polygon),
+                second_polygon: pg(second_polygon),
             },
-            InvalidRegion3 { region } => InvalidRegion3 { region: region + b },
+            InvalidRegion3 { region } => InvalidRegion3 { region: rg(region) },
             SegmentCrossesFacet { segment, facet } => SegmentCrossesFacet {
-                segment: segment + b,
-                facet: facet + b,
+                segment: sg(segment),
+                facet: fc(facet),
             },
             FacetsIntersect { first, second } => FacetsIntersect {
-                first: first + b,
-                second: second + b,
+                first: fc(first),
+                second: fc(second),
             },
             VertexOnFacet { vertex, facet } => VertexOnFacet {
-                vertex: vertex + b,
-                facet: facet + b,
+                vertex: pt(vertex),
+                facet: fc(facet),
             },
             VertexOnSegment { vertex, segment } => VertexOnSegment {
-                vertex: vertex + b,
-                segment: segment + b,
+                vertex: pt(vertex),
+                segment: sg(segment),
             },
-            OpenSurface { count, edges } => OpenSurface {
+            OpenSurface {
                 count,
-                edges: edges.iter().map(|e| e.map(|v| v + b)).collect(),
+                edges,
+                facets,
+            } => OpenSurface {
+                count,
+                edges: edges.iter().map(|e| e.map(pt)).collect(),
+                facets: facets.into_iter().map(fc).collect(),
             },
+            NonManifoldEdge {
+                count,
+                edge,
+                facets,
+            } => NonManifoldEdge {
+                count,
+                edge: edge.map(pt),
+                facets: facets.into_iter().map(fc).collect(),
+            },
+            UntriangulablePolygon { facet } => UntriangulablePolygon { facet: fc(facet) },
             other => other,
         }
     }
@@ -485,22 +551,61 @@ impl fmt::Display for InputError {
             VertexOnSegment { vertex, segment } => {
                 write!(f, "point {vertex} lies inside segment {segment}")
             }
-            OpenSurface { count, edges } => {
+            OpenSurface {
+                count,
+                edges,
+                facets,
+            } => {
                 write!(f, "the facets enclose no volume: the surface is open")?;
                 if *count > 0 {
                     let list: Vec<String> =
                         edges.iter().map(|e| format!("{}-{}", e[0], e[1])).collect();
                     write!(
                         f,
-                        " ({count} facet edge{} used by one facet only, e.g. {})",
+                        " ({count} facet edge{} used by one facet only, e.g. {}",
                         if *count == 1 { " is" } else { "s are" },
                         list.join(", ")
                     )?;
+                    if !facets.is_empty() {
+                        write!(f, " of facet{} {}", plural(facets.len()), join(facets))?;
+                    }
+                    write!(f, ")")?;
                 }
                 Ok(())
             }
+            NonManifoldEdge {
+                count,
+                edge,
+                facets,
+            } => write!(
+                f,
+                "the facets enclose no volume and the surface is not manifold: {count} facet \
+                 edge{} shared by three or more facets, e.g. {}-{} by facets {}",
+                if *count == 1 { " is" } else { "s are" },
+                edge[0],
+                edge[1],
+                join(facets)
+            ),
+            UntriangulablePolygon { facet } => write!(
+                f,
+                "facet {facet} is not planar and cannot be triangulated on its own vertices: \
+                 no projection along a coordinate axis makes it a simple polygon"
+            ),
         }
     }
+}
+
+fn plural(n: usize) -> &'static str {
+    if n == 1 {
+        ""
+    } else {
+        "s"
+    }
+}
+
+fn join(items: &[usize]) -> String {
+    let list: Vec<String> = items.iter().map(|i| i.to_string()).collect();
+    list.join(", ")
 }
 
 impl fmt::Display for Error {

@@ -8,7 +8,7 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use idmesh::io::tetgen::{parse_edge, parse_ele, parse_face, parse_neigh, parse_node};
+use idmesh::io::tetgen::{parse_edge, parse_ele, parse_face, parse_neigh, parse_node, parse_off};
 use idmesh::predicates::orient3d;
 
 /// A directory removed when the test ends (pass or fail).
@@ -557,4 +557,86 @@ fn coplanar_triangles_are_merged_unless_minus_m() {
         });
         assert_eq!(on_diagonal, diagonals, "{switches}");
     }
+}
+
+/// A unit cube as exported surfaces have it: vertex 8 repeats vertex 1 (and the right side
+/// uses it), vertex 9 is on no face, vertex 10 halves the bottom's edge 0-1 with a zero-area
+/// triangle 0-10-1 beside it, and corner 6 is raised so that the top is not planar.
+const CUBE_AS_EXPORTED: &str = "OFF
+11 7 0
+0 0 0
+1 0 0
+1 1 0
+0 1 0
+0 0 1
+1 0 1
+1 1 1.25
+0 1 1
+1 0 0
+5 5 5
+0.5 0 0
+5 0 3 2 1 10
+4 4 5 6 7
+4 0 1 5 4
+4 8 2 6 5
+4 2 3 7 6
+4 3 0 4 7
+3 0 10 1
+";
+
+#[test]
+fn surface_input_is_repaired_with_warnings_unless_quiet() {
+    let d = TempDir::new("exported");
+    d.write("c.off", CUBE_AS_EXPORTED);
+    let out = idmesh(&d.0, &["-pC", "c.off"]);
+    ok(&out);
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    for want in [
+        "1 duplicate vertex merged (vertices with the coordinates of an earlier one, e.g. 8 = 1)",
+        "1 zero-area face (all corners on one line) dropped, e.g. face 6",
+        "1 non-planar face triangulated into 2 triangles, e.g. face 1",
+        "1 unreferenced vertex (on no face) dropped, e.g. 9",
+    ] {
+        assert!(err.contains(want), "missing '{want}' in {err}");
+    }
+    assert_eq!(err.lines().count(), 4, "{err}");
+    // Output vertices: the kept input vertices in input order (0-7, then 10), then Steiner
+    // points.
+    let m = read_mesh(&d, "c.1", 0);
+    let input = parse_off(CUBE_AS_EXPORTED, "c.off").unwrap().plc.points;
+    assert_eq!(&m.points[..8], &input[..8]);
+    assert_eq!(m.points[8], input[10]);
+    m.assert_oriented();
+    // The top's diagonal decides the volume: 1 + 1/24 or 1 + 1/12.
+    let v = m.volume();
+    assert!(
+        close(v, 1.0 + 1.0 / 24.0) || close(v, 1.0 + 1.0 / 12.0),
+        "{v}"
+    );
+    // -Q: the same mesh (written over the first), no warnings.
+    let first = d.read("c.1.node");
+    let out = idmesh(&d.0, &["-pQ", "c.off"]);
+    ok(&out);
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(d.read("c.1.node"), first);
+}
+
+#[test]
+fn an_untriangulable_face_is_named_with_its_line() {
+    // Face 1 is a non-planar bow tie in every axis projection.
+    let d = TempDir::new("bowtie");
+    d.write(
+        "b.off",
+        "OFF\n5 2 0\n0 0 0\n1 1 1\n1 0 0.3\n0 1 0.7\n5 5 5\n3 0 1 4\n4 0 1 2 3\n",
+    );
+    let line = fails(&idmesh(&d.0, &["-pQ", "b.off"]));
+    assert!(
+        line.contains("b.off: invalid input: facet 1 is not planar and cannot be triangulated")
+            && line.ends_with("(line 9)"),
+        "{line}"
+    );
 }

@@ -657,11 +657,12 @@ fn an_open_surface_names_its_open_edges() {
     let want = InputError::OpenSurface {
         count: 4,
         edges: vec![[4, 5], [4, 7], [5, 6]],
+        facets: vec![1, 2, 4],
     };
     assert_eq!(err, Error::Input(want), "{err}");
     let msg = err.to_string();
     assert!(
-        msg.contains("4 facet edges are used by one facet only, e.g. 4-5, 4-7, 5-6"),
+        msg.contains("4 facet edges are used by one facet only, e.g. 4-5, 4-7, 5-6 of facets"),
         "{msg}"
     );
     // A closed surface with a dangling internal facet still meshes.

@@ -79,6 +79,13 @@ pub enum idm_input_error {
     /// `item` and `other`: the points of the first facet edge that only one facet uses (the
     /// facets enclose no volume); `part`: how many such edges there are.
     IDM_INPUT_OPEN_SURFACE = 30,
+    /// `item` and `other`: the points of the first facet edge that three or more facets share
+    /// (the facets enclose no volume and the surface is not manifold); `part`: how many such
+    /// edges there are.
+    IDM_INPUT_NON_MANIFOLD_EDGE = 31,
+    /// `item`: a non-planar surface polygon that cannot be triangulated on its own vertices
+    /// (`surface_input` only).
+    IDM_INPUT_UNTRIANGULABLE_POLYGON = 32,
 }
 
 /// An input error as C sees it: its kind and its `item`, `part` and `other` indices (-1: none).
@@ -175,9 +182,18 @@ fn describe(e: &InputError) -> (idm_input_error, [i64; 3]) {
         VertexOnSegment { vertex, segment } => {
             (IDM_INPUT_VERTEX_ON_SEGMENT, [ix(vertex), none, ix(segment)])
         }
-        OpenSurface { count, ref edges } => {
+        OpenSurface {
+            count, ref edges, ..
+        } => {
             let e = edges.first().map_or([none, none], |e| [ix(e[0]), ix(e[1])]);
             (IDM_INPUT_OPEN_SURFACE, [e[0], ix(count), e[1]])
+        }
+        NonManifoldEdge { count, edge, .. } => (
+            IDM_INPUT_NON_MANIFOLD_EDGE,
+            [ix(edge[0]), ix(count), ix(edge[1])],
+        ),
+        UntriangulablePolygon { facet } => {
+            (IDM_INPUT_UNTRIANGULABLE_POLYGON, [ix(facet), none, none])
         }
     }
 }

@@ -58,6 +58,12 @@ pub struct idm_options3d {
     /// Default 15 (`DEFAULT_MIN_DIHEDRAL` of the Rust library). Added in 0.3.0: a caller's
     /// older struct gets the default.
     pub min_dihedral: f64,
+    /// Take the facets as a polygon surface mesh and repair it before meshing, as the README's
+    /// "Surface input" says: exact duplicate points merged, zero-area polygons and points on
+    /// no facet or segment dropped, non-planar polygons triangulated on their own vertices.
+    /// The output vertices are then the kept input points in input order (coordinates
+    /// unchanged), then the Steiner points; error indices name the input's items. Default 0.
+    pub surface_input: i32,
 }
 
 /// Quality figures of the current mesh (see `idm_mesher3d_stats`).
@@ -181,6 +187,7 @@ unsafe impl SizedOptions for idm_options3d {
             min_dihedral: d
                 .min_dihedral
                 .unwrap_or(crate::mesh3d::DEFAULT_MIN_DIHEDRAL),
+            surface_input: d.surface_input.into(),
         }
     }
 }
@@ -424,6 +431,7 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
                 merge_coplanar: false,
                 verbose: o.verbose != 0,
                 min_dihedral: Some(o.min_dihedral),
+                surface_input: o.surface_input != 0,
             };
             Ok(())
         })
@@ -1216,8 +1224,10 @@ mod tests {
         assert_eq!(o.max_steiner < 0, d.max_steiner.is_none());
         assert_eq!(o.verbose != 0, d.verbose);
         assert_eq!(o.keep_surface != 0, d.keep_surface);
+        assert_eq!(o.surface_input != 0, d.surface_input);
         // The documented values of the header.
         assert_eq!((o.max_steiner, o.verbose, o.keep_surface), (-1, 0, 0));
+        assert_eq!(o.surface_input, 0);
     }
 
     #[test]
@@ -1655,6 +1665,63 @@ mod tests {
             u[0] * v[1] - u[1] * v[0],
         ];
         0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt()
+    }
+
+    #[test]
+    fn an_options_struct_of_0_2_0_leaves_the_appended_fields_at_their_defaults() {
+        assert_eq!(<idm_options3d as SizedOptions>::BASELINE, 48);
+        let mut o = options(2.0, 0.0);
+        o.surface_input = 1;
+        o.struct_size = 48;
+        let mut m = Handle::new();
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
+        let h = &m.get_mut().opts;
+        assert_eq!(h.radius_edge, Some(2.0));
+        assert!(!h.surface_input, "beyond the caller's struct");
+    }
+
+    #[test]
+    fn surface_input_repairs_the_facets_first() {
+        // The cube with its vertex 1 given again (as the last point) for one facet: refused
+        // as it is, meshed with `surface_input`, whose output has the other points first.
+        let mut p = cube();
+        let n = p.points.len();
+        p.points.push(p.points[1]);
+        p.point_markers.push(0);
+        let f = p
+            .facets
+            .iter()
+            .position(|f| f.polygons[0].contains(&1))
+            .unwrap();
+        p.facets[f].polygons[0].iter_mut().for_each(|v| {
+            if *v == 1 {
+                *v = n as u32;
+            }
+        });
+        let m = Handle::new();
+        load(&m, &p);
+        assert_eq!(unsafe { idm_mesher3d_refine(m.0) }, IDM_ERR_INVALID_INPUT);
+        let mut o = options(0.0, 0.0);
+        o.surface_input = 1;
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
+        assert!(m.get().opts.surface_input);
+        assert_eq!(
+            unsafe { idm_mesher3d_refine(m.0) },
+            IDM_OK,
+            "{}",
+            last_error()
+        );
+        let got = read_back(&m);
+        assert_eq!(&got.vertices[..n], &p.points[..n]);
+        assert!(
+            !got.vertices[n..].contains(&p.points[1]),
+            "merged into vertex 1"
+        );
+        assert!(
+            (got.volume() - 1.0).abs() < 1e-12,
+            "volume {}",
+            got.volume()
+        );
     }
 
     #[test]

@@ -56,16 +56,23 @@ pub fn check_plc(plc: &Plc) -> Result<(), Error> {
 }
 
 fn check(plc: &Plc) -> Result<(), Error> {
-    check_points(plc)?;
-    check_markers(plc)?;
-    check_segments(plc)?;
-    check_polygons(plc)?;
+    check_items(plc)?;
     check_seeds(plc)?;
     check_duplicate_points(&plc.points)?;
     check_duplicate_segments(&plc.segments)?;
     check_not_coplanar(&plc.points)?;
     let facets = facets::triangulate_facets(plc)?;
     intersect::check_intersections(plc, &facets)
+}
+
+/// The first checks, on items one at a time: point count and coordinates, marker counts,
+/// segment and polygon indices, empty polygons and polygons listing a point twice (what must
+/// hold before points can be renumbered, as the surface repair does).
+pub(crate) fn check_items(plc: &Plc) -> Result<(), Error> {
+    check_points(plc)?;
+    check_markers(plc)?;
+    check_segments(plc)?;
+    check_polygons(plc)
 }
 
 fn check_points(plc: &Plc) -> Result<(), Error> {
@@ -180,8 +187,9 @@ fn check_seeds(plc: &Plc) -> Result<(), Error> {
     Ok(())
 }
 
-/// Sorts point indices by coordinates; equal neighbours are duplicates (-0.0 equals 0.0).
-fn check_duplicate_points(points: &[[f64; 3]]) -> Result<(), Error> {
+/// Point indices sorted by coordinates, then index: points with equal coordinates (-0.0
+/// equals 0.0) are neighbours, the first of them first.
+pub(crate) fn by_coordinates(points: &[[f64; 3]]) -> Vec<u32> {
     let mut order: Vec<u32> = (0..points.len() as u32).collect();
     let cmp = |x: f64, y: f64| x.partial_cmp(&y).unwrap_or(std::cmp::Ordering::Equal);
     order.sort_unstable_by(|&i, &j| {
@@ -191,6 +199,12 @@ fn check_duplicate_points(points: &[[f64; 3]]) -> Result<(), Error> {
             .then(cmp(a[2], b[2]))
             .then(i.cmp(&j))
     });
+    order
+}
+
+/// Equal neighbours in [`by_coordinates`] order are duplicates.
+fn check_duplicate_points(points: &[[f64; 3]]) -> Result<(), Error> {
+    let order = by_coordinates(points);
     if let Some(w) = order
         .windows(2)
         .find(|w| points[w[0] as usize] == points[w[1] as usize])

@@ -301,6 +301,7 @@ pub fn parse_msh(text: &str, file: &str) -> Result<TetgenInput, ParseError> {
             points.push(*p);
         }
     }
+    let facet_lines = faces.iter().map(|f| f.2).collect();
     let facets = faces
         .into_iter()
         .map(|(corners, marker, _)| Facet {
@@ -316,6 +317,7 @@ pub fn parse_msh(text: &str, file: &str) -> Result<TetgenInput, ParseError> {
             ..Default::default()
         },
         base: 0,
+        facet_lines,
         ..Default::default()
     })
 }

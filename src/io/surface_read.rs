@@ -86,6 +86,7 @@ impl RawPolygons {
                 ..Plc::default()
             },
             base,
+            facet_lines: self.lines,
             ..TetgenInput::default()
         })
     }

@@ -15,4 +15,7 @@ pub struct TetgenInput {
     pub num_point_attributes: usize,
     /// Vertex attributes, `num_point_attributes` per vertex, vertex by vertex.
     pub point_attributes: Vec<f64>,
+    /// The line of the file each facet was read from (surface formats; empty when unknown),
+    /// for error messages.
+    pub facet_lines: Vec<usize>,
 }

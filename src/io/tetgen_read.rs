@@ -137,6 +137,7 @@ fn read_vertices<'a>(
         base,
         num_point_attributes: na,
         point_attributes: attributes,
+        ..TetgenInput::default()
     })
 }
 

@@ -19,6 +19,7 @@ mod plc;
 #[cfg(test)]
 mod plc_tests;
 pub mod store;
+pub mod surface;
 mod validate;
 
 use std::fmt;
@@ -26,6 +27,7 @@ use std::sync::Arc;
 
 pub use output::{TetMesh, TetStats, DIHEDRAL_BINS};
 pub use plc::sliver::DEFAULT_MIN_DIHEDRAL;
+pub use surface::{repair_surface, SurfaceRepair, SurfaceWarning};
 
 use crate::error::{catch_panic, Error};
 use crate::input3d::Plc;
@@ -89,6 +91,13 @@ pub struct Options3 {
     /// [`DEFAULT_MIN_DIHEDRAL`]; `Some(0.0)`: no sliver removal. Tetrahedra next to small
     /// input angles are exempt. Not applied with `keep_surface`. Default: `None`.
     pub min_dihedral: Option<f64>,
+    /// Take the facets as a polygon surface mesh and repair it first, as
+    /// [`repair_surface`] does (duplicate vertices merged, zero-area polygons and
+    /// unreferenced vertices dropped, non-planar polygons triangulated); errors name the
+    /// input's items. The mesh's vertices are then the kept input points in input order,
+    /// then the Steiner points. The C API's `surface_input`; Rust callers who want the
+    /// warnings and the vertex map call [`repair_surface`] themselves. Default: `false`.
+    pub surface_input: bool,
 }
 
 impl fmt::Debug for Options3 {
@@ -105,6 +114,7 @@ impl fmt::Debug for Options3 {
             .field("merge_coplanar", &self.merge_coplanar)
             .field("verbose", &self.verbose)
             .field("min_dihedral", &self.min_dihedral)
+            .field("surface_input", &self.surface_input)
             .finish()
     }
 }
@@ -118,6 +128,14 @@ impl fmt::Debug for Options3 {
 /// to stop.
 pub fn tetrahedralize(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
     catch_panic("", || {
+        if opts.surface_input {
+            let r = repair_surface(plc)?;
+            let opts = Options3 {
+                surface_input: false,
+                ..opts.clone()
+            };
+            return tetrahedralize(&r.plc, &opts).map_err(|e| r.error(e));
+        }
         crate::progress::observe(opts.progress.as_ref(), || {
             use crate::progress::{stage, Stage};
             stage(Stage::Reading, || (0, plc.points.len() as u64))?;

@@ -15,7 +15,7 @@
 use std::collections::VecDeque;
 
 mod flip;
-mod keep;
+pub(super) mod keep;
 pub(super) mod sliver;
 
 use super::facet_mesh::{FacetInsertError, FacetMesh};
@@ -1099,31 +1099,45 @@ impl Mesher<'_> {
     }
 
     /// Why no tetrahedron is inside: the input facets' loop edges that only one facet uses
-    /// (an open surface, an input error), or, when there is none, an internal error.
+    /// (an open surface), or, when there is none, those three or more facets share (a
+    /// non-manifold surface): input errors naming the first few edges and their facets. An
+    /// internal error only when every edge has exactly two facets.
     fn open_surface(&self) -> Error {
-        let mut uses: crate::hash::FastMap<[u32; 2], u32> = Default::default();
-        for f in &self.plc.facets {
-            for poly in f.polygons.iter().filter(|p| p.len() >= 3) {
+        let mut uses: crate::hash::FastMap<[u32; 2], Vec<u32>> = Default::default();
+        for (f, facet) in self.plc.facets.iter().enumerate() {
+            for poly in facet.polygons.iter().filter(|p| p.len() >= 3) {
                 for (i, &a) in poly.iter().enumerate() {
                     let b = poly[(i + 1) % poly.len()];
-                    *uses.entry([a.min(b), a.max(b)]).or_default() += 1;
+                    uses.entry([a.min(b), a.max(b)]).or_default().push(f as u32);
                 }
             }
         }
-        let mut open: Vec<[usize; 2]> = uses
-            .into_iter()
-            .filter(|&(_, n)| n == 1)
-            .map(|(e, _)| e.map(|v| v as usize))
-            .collect();
-        if open.is_empty() {
-            return Error::Internal(
-                "the facets enclose no volume, yet every facet edge is shared".into(),
-            );
+        let mut edges: Vec<([u32; 2], Vec<u32>)> = uses.into_iter().collect();
+        edges.sort_unstable();
+        let open: Vec<&([u32; 2], Vec<u32>)> = edges.iter().filter(|e| e.1.len() == 1).collect();
+        let first_facets = |list: &mut dyn Iterator<Item = u32>| {
+            let mut fs: Vec<usize> = list.map(|f| f as usize).collect();
+            fs.sort_unstable();
+            fs.dedup();
+            fs
+        };
+        if !open.is_empty() {
+            let shown = &open[..open.len().min(3)];
+            return Error::Input(crate::InputError::OpenSurface {
+                count: open.len(),
+                edges: shown.iter().map(|e| e.0.map(|v| v as usize)).collect(),
+                facets: first_facets(&mut shown.iter().map(|e| e.1[0])),
+            });
         }
-        open.sort_unstable();
-        let count = open.len();
-        open.truncate(3);
-        Error::Input(crate::InputError::OpenSurface { count, edges: open })
+        let crowded: Vec<&([u32; 2], Vec<u32>)> = edges.iter().filter(|e| e.1.len() > 2).collect();
+        if let Some(first) = crowded.first() {
+            return Error::Input(crate::InputError::NonManifoldEdge {
+                count: crowded.len(),
+                edge: first.0.map(|v| v as usize),
+                facets: first_facets(&mut first.1.iter().copied().take(4)),
+            });
+        }
+        Error::Internal("the facets enclose no volume, yet every facet edge is shared".into())
     }
 
     fn seed_tet(&self, p: [f64; 3]) -> Option<u32> {

@@ -3,12 +3,14 @@
 use std::path::Path;
 use std::time::{Duration, Instant};
 
+use idmesh::error::Item;
 use idmesh::input3d::check_plc;
 use idmesh::io::tetgen::{read_input, TetgenInput};
 use idmesh::progress::observe;
+use idmesh::mesh3d::repair_surface;
 use idmesh::switches::tetgen::{self as tetgen_switches, renumber, resolve, say, write_outputs};
 use idmesh::switches::tetgen::{Parsed, TetSwitches};
-use idmesh::{delaunay3d, tetrahedralize, Error, TetMesh};
+use idmesh::{delaunay3d, tetrahedralize, Error, Plc, TetMesh};
 
 use crate::progress_ui::{catch_interrupt, check_interrupt, Outputs, Progress};
 
@@ -20,7 +22,10 @@ Usage: idmesh tetgen [-SWITCHES] FILE
 
 FILE is FILE.node (a point set) or, with -p, FILE.poly or FILE.smesh (a piecewise linear
 complex); FILE.off, FILE.stl, FILE.ply and FILE.mesh (Medit) are surfaces read as PLCs, and
-those extensions, like .poly and .smesh, imply -p. Outputs are FILE.1.node, FILE.1.ele and
+those extensions, like .poly and .smesh, imply -p. Surface files are repaired first, with a
+warning per kind of repair unless -Q: duplicate vertices merged, zero-area faces and
+unreferenced vertices dropped, non-planar faces triangulated (output vertices: the kept input
+vertices in input order). Outputs are FILE.1.node, FILE.1.ele and
 FILE.1.face (FILE.2.* for FILE.1, ...), FILE.1.edge with -e, FILE.1.neigh with -n. Numbering
 follows the input (0 or 1), or starts at 0 with -z.
 
@@ -50,7 +55,8 @@ Switches are letters that may be grouped, e.g. -pq1.414a0.1V:
   -V          verbose: print counts, volume, quality figures and timings
   -M          do not merge coplanar facets: by default, as in TetGen, exactly coplanar
               neighbouring facets with the same marker are meshed as one facet (the edges
-              between them need not appear in the mesh); never with -Y
+              between them need not appear in the mesh); never with -Y. Duplicate
+              vertices of surface files are merged all the same, as in TetGen
   -k, -g      also write FILE.1.vtk (legacy VTK) / FILE.1.mesh (Medit), as TetGen does
   --format F  also write FILE.1.F: vtk, vtu (VTK XML), msh (Gmsh 4.1) or mesh (Medit)
   -D -J       accepted: idmesh output is always conforming Delaunay and never drops unused
@@ -81,11 +87,32 @@ fn run(sw: &TetSwitches, file: &str) -> Result<(), String> {
     let path = Path::new(&files.input);
     let input = read_input(path).map_err(|e| e.to_string())?;
     check_interrupt()?;
-    let read_time = start.elapsed();
     let base = input.base;
+    let repair = if is_surface(&files.input) {
+        let r = repair_surface(&input.plc).map_err(|e| describe(&e, &input, &files.input))?;
+        if !sw.quiet {
+            for w in &r.warnings {
+                eprintln!(
+                    "idmesh: warning: {}: {}",
+                    files.input,
+                    w.message(base as usize)
+                );
+            }
+        }
+        Some(r)
+    } else {
+        None
+    };
+    // The error of a run on the repaired surface, in the file's numbering.
+    let told = |e: Error| {
+        let e = repair.as_ref().map_or(e.clone(), |r| r.error(e));
+        describe(&e, &input, &files.input)
+    };
+    let plc = repair.as_ref().map_or(&input.plc, |r| &r.plc);
+    let read_time = start.elapsed();
 
     if sw.detect {
-        check_plc(&input.plc).map_err(|e| describe(&e, base, &files.input))?;
+        check_plc(plc).map_err(told)?;
         say(sw, format_args!("No intersections or bad facets found."));
         return Ok(());
     }
@@ -94,7 +121,7 @@ fn run(sw: &TetSwitches, file: &str) -> Result<(), String> {
     let mesh = if files.plc {
         let mut opts = sw.options();
         opts.progress = Some(progress.callback());
-        tetrahedralize(&input.plc, &opts)
+        tetrahedralize(plc, &opts)
     } else {
         // A point set has no features to pass markers on: the input's markers are copied.
         let f = progress.callback();
@@ -106,7 +133,7 @@ fn run(sw: &TetSwitches, file: &str) -> Result<(), String> {
             m
         })
     };
-    let mesh = mesh.map_err(|e| describe(&e, base, &files.input))?;
+    let mesh = mesh.map_err(told)?;
     let mesh_time = mesh_start.elapsed();
     if !mesh.complete {
         // Printed even with -Q: the files are written but miss the requested bounds.
@@ -131,7 +158,7 @@ fn run(sw: &TetSwitches, file: &str) -> Result<(), String> {
         sw,
         &files.out_stem,
         files.plc,
-        !input.plc.point_markers.is_empty(),
+        !plc.point_markers.is_empty(),
         &mesh,
         out_base,
     )
@@ -142,21 +169,47 @@ fn run(sw: &TetSwitches, file: &str) -> Result<(), String> {
     written?;
     let write_time = write_start.elapsed();
     if sw.verbose && !sw.quiet {
-        statistics(&input, &mesh, [read_time, mesh_time, write_time]);
+        statistics(plc, &mesh, [read_time, mesh_time, write_time]);
     }
     Ok(())
 }
 
-/// A one-line message for a mesher error, with item numbers as in the input file.
-fn describe(e: &Error, base: u32, file: &str) -> String {
+/// Whether `file` is a surface mesh (repaired as the README's "Surface input" says), not a
+/// `.node`, `.poly` or `.smesh` file (taken as given, as in TetGen).
+fn is_surface(file: &str) -> bool {
+    let ext = Path::new(file)
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase());
+    matches!(ext.as_deref(), Some("off" | "stl" | "ply" | "mesh" | "msh"))
+}
+
+/// A one-line message for a mesher error, with item numbers as in the input file (and the
+/// line of the first facet it names, when the reader kept it).
+fn describe(e: &Error, input: &TetgenInput, file: &str) -> String {
     match e {
-        Error::Input(ie) => format!("{file}: invalid input: {}", renumber(ie, base as usize)),
+        Error::Input(ie) => {
+            let first = std::cell::Cell::new(None);
+            ie.map_items(&|kind, i| {
+                if kind == Item::Facet && first.get().is_none() {
+                    first.set(Some(i));
+                }
+                i
+            });
+            let at = first
+                .get()
+                .and_then(|f| input.facet_lines.get(f))
+                .map_or(String::new(), |l| format!(" (line {l})"));
+            format!(
+                "{file}: invalid input: {}{at}",
+                renumber(ie, input.base as usize)
+            )
+        }
         other => format!("{file}: {other}"),
     }
 }
 
-fn statistics(input: &TetgenInput, mesh: &TetMesh, [read, meshing, write]: [Duration; 3]) {
-    let p = &input.plc;
+fn statistics(p: &Plc, mesh: &TetMesh, [read, meshing, write]: [Duration; 3]) {
     let s = mesh.stats();
     println!();
     println!(

@@ -632,7 +632,11 @@ impl Mesher<'_> {
 /// holds no other polygon vertex (exact tests); among the ears one whose circumcircle holds no
 /// other polygon vertex is preferred (the Delaunay one, when the polygon has it). `None` when
 /// no ear is left (not a simple polygon in this projection).
-fn clip_ears(poly: &[u32], p2: &dyn Fn(u32) -> [f64; 2], out: &mut Vec<[u32; 3]>) -> Option<()> {
+pub(crate) fn clip_ears(
+    poly: &[u32],
+    p2: &dyn Fn(u32) -> [f64; 2],
+    out: &mut Vec<[u32; 3]>,
+) -> Option<()> {
     let mut ring = poly.to_vec();
     while ring.len() > 3 {
         let n = ring.len();

@@ -16,7 +16,7 @@ mod order;
 mod output;
 mod plc;
 #[cfg(test)]
-mod plc_tests;
+pub(crate) mod plc_tests;
 pub mod store;
 mod validate;
 

@@ -261,6 +261,12 @@ typedef struct idm_plc3d idm_plc3d;
 typedef struct idm_tetgen_extra idm_tetgen_extra;
 
 /**
+ * Items read from a TetGen mesh file by `idm_tetgen_read_items`. Free with
+ * `idm_tetgen_items_free`.
+ */
+typedef struct idm_tetgen_items idm_tetgen_items;
+
+/**
  * Meshing options. Fill it with `idm_options2d_default` first, then change what you need, so
  * that code keeps working if fields are ever appended. Booleans are `int32_t`: 0 is false,
  * anything else true.
@@ -650,6 +656,42 @@ typedef struct idm_tetgen_extra_view {
    */
   const double *point_attributes;
 } idm_tetgen_extra_view;
+
+/**
+ * The arrays of an `idm_tetgen_items`, lent until `idm_tetgen_items_free`. An empty array
+ * is NULL.
+ */
+typedef struct idm_tetgen_items_view {
+  /**
+   * Number of items (tetrahedra, faces, volume bounds or sizes).
+   */
+  size_t count;
+  /**
+   * Indices per item: 4 for `.ele` (the corners of 10-node files too), 3 for `.face`, 0
+   * for `.vol` and `.mtr`.
+   */
+  size_t per_item;
+  /**
+   * The indices, numbered from the `base` given to `idm_tetgen_read_items`.
+   */
+  const int32_t *indices;
+  /**
+   * Attributes per item (`.ele`).
+   */
+  size_t num_attributes;
+  /**
+   * `num_attributes` per item.
+   */
+  const double *attributes;
+  /**
+   * One marker per item (`.face` with markers), else NULL.
+   */
+  const int32_t *markers;
+  /**
+   * One value per item (`.vol`: maximum volume; `.mtr`: size), else NULL.
+   */
+  const double *values;
+} idm_tetgen_items_view;
 
 /**
  * Triangle's switches, parsed (`idm_triangle_parse_switches`). Booleans are `int32_t`: 0 or 1.
@@ -1447,6 +1489,39 @@ enum idm_status idm_tetgen_extra_set_point_attributes(struct idm_tetgen_extra *e
  */
 enum idm_status idm_tetgen_extra_output(const struct idm_tetgen_extra *e,
                                         struct idm_tetgen_extra_view *out);
+
+/**
+ * Reads a TetGen mesh file with idmesh's readers: `kind` 0 an `.ele` file, 1 a `.face`
+ * file, 2 a `.vol` file (`num_tets` lines), 3 an `.mtr` file (`num_points` lines, one size
+ * each); indices refer to `num_points` points numbered from `base` (0 or 1). Errors name the
+ * file and line.
+ *
+ * # Safety
+ * `path` a NUL-terminated string; `out` valid for writing a pointer.
+ */
+enum idm_status idm_tetgen_read_items(const char *path,
+                                      int32_t kind,
+                                      size_t num_points,
+                                      size_t num_tets,
+                                      uint32_t base,
+                                      struct idm_tetgen_items **out);
+
+/**
+ * Lends the arrays of `p` in `*out`.
+ *
+ * # Safety
+ * `p` a live `idm_tetgen_items`; `out` valid for writing the struct.
+ */
+enum idm_status idm_tetgen_items_arrays(const struct idm_tetgen_items *p,
+                                        struct idm_tetgen_items_view *out);
+
+/**
+ * Frees an `idm_tetgen_items`. NULL is a no-op.
+ *
+ * # Safety
+ * `p` NULL or from `idm_tetgen_read_items`, not freed before.
+ */
+void idm_tetgen_items_free(struct idm_tetgen_items *p);
 
 /**
  * Parses a switch string as Triangle's `triangulate()` takes it (`"pq30a0.1zQ"`; a leading

@@ -692,11 +692,91 @@ bool tetgenio::load_stl(char *name) { return read_with(this, name, ".stl"); }
 bool tetgenio::load_medit(char *name, int) { return read_with(this, name, ".mesh"); }
 bool tetgenio::load_vtk(char *name) { return refuse_load("VTK", name); }
 bool tetgenio::load_edge(char *name) { return refuse_load(".edge", name); }
-bool tetgenio::load_face(char *name) { return refuse_load(".face", name); }
-bool tetgenio::load_tet(char *name) { return refuse_load(".ele", name); }
-bool tetgenio::load_vol(char *name) { return refuse_load(".vol", name); }
 bool tetgenio::load_var(char *name) { return refuse_load(".var", name); }
-bool tetgenio::load_mtr(char *name) { return refuse_load(".mtr", name); }
+
+namespace {
+struct Items {
+  idm_tetgen_items *p = nullptr;
+  idm_tetgen_items_view v;
+  ~Items() { idm_tetgen_items_free(p); }
+};
+
+// Reads `name` + `ext` (kind as idm_tetgen_read_items) for `io`'s points and tetrahedra.
+bool read_items(const tetgenio *io, const char *name, const char *ext, int kind, Items &it) {
+  std::string path = name;
+  if (!has_suffix(path, ext)) path += ext;
+  if (idm_tetgen_read_items(path.c_str(), kind, (size_t)(io->numberofpoints > 0 ? io->numberofpoints : 0),
+                            (size_t)(io->numberoftetrahedra > 0 ? io->numberoftetrahedra : 0),
+                            io->firstnumber == 1 ? 1 : 0, &it.p) != IDM_OK ||
+      idm_tetgen_items_arrays(it.p, &it.v) != IDM_OK) {
+    fprintf(stderr, "Error:  %s\n", idm_last_error());
+    return false;
+  }
+  return true;
+}
+
+bool exists(const char *name, const char *ext) {
+  std::string path = name;
+  if (!has_suffix(path, ext)) path += ext;
+  FILE *f = fopen(path.c_str(), "r");
+  if (f != nullptr) fclose(f);
+  return f != nullptr;
+}
+}  // namespace
+
+bool tetgenio::load_tet(char *name) {
+  Items it;
+  if (!read_items(this, name, ".ele", 0, it)) return false;
+  delete[] tetrahedronlist;
+  delete[] tetrahedronattributelist;
+  tetrahedronattributelist = nullptr;
+  numberoftetrahedra = (int)it.v.count;
+  numberofcorners = 4;
+  tetrahedronlist = new_array<int>(4 * it.v.count);
+  for (size_t i = 0; i < 4 * it.v.count; i++) tetrahedronlist[i] = it.v.indices[i];
+  numberoftetrahedronattributes = (int)it.v.num_attributes;
+  if (it.v.num_attributes > 0) {
+    size_t n = it.v.num_attributes * it.v.count;
+    tetrahedronattributelist = new_array<REAL>(n);
+    for (size_t i = 0; i < n; i++) tetrahedronattributelist[i] = it.v.attributes[i];
+  }
+  return true;
+}
+
+bool tetgenio::load_face(char *name) {
+  Items it;
+  if (!read_items(this, name, ".face", 1, it)) return false;
+  delete[] trifacelist;
+  delete[] trifacemarkerlist;
+  trifacemarkerlist = nullptr;
+  numberoftrifaces = (int)it.v.count;
+  trifacelist = new_array<int>(3 * it.v.count);
+  for (size_t i = 0; i < 3 * it.v.count; i++) trifacelist[i] = it.v.indices[i];
+  if (it.v.markers != nullptr) {
+    trifacemarkerlist = new_array<int>(it.v.count);
+    for (size_t i = 0; i < it.v.count; i++) trifacemarkerlist[i] = it.v.markers[i];
+  }
+  return true;
+}
+
+bool tetgenio::load_vol(char *name) {
+  Items it;
+  if (!read_items(this, name, ".vol", 2, it)) return false;
+  delete[] tetrahedronvolumelist;
+  tetrahedronvolumelist = new_array<REAL>(it.v.count);
+  for (size_t i = 0; i < it.v.count; i++) tetrahedronvolumelist[i] = it.v.values[i];
+  return true;
+}
+
+bool tetgenio::load_mtr(char *name) {
+  Items it;
+  if (!read_items(this, name, ".mtr", 3, it)) return false;
+  delete[] pointmtrlist;
+  numberofpointmtrs = 1;
+  pointmtrlist = new_array<REAL>(it.v.count);
+  for (size_t i = 0; i < it.v.count; i++) pointmtrlist[i] = it.v.values[i];
+  return true;
+}
 bool tetgenio::load_pbc(char *name) { return refuse_load(".pbc", name); }
 
 bool tetgenio::load_plc(char *name, int object) {
@@ -721,10 +801,21 @@ bool tetgenio::load_plc(char *name, int object) {
   }
 }
 
-// Only the points: refining a given mesh (-r) is refused, so its elements are never used.
+// The points, the tetrahedra (.ele), and when present the faces, volume bounds and sizes
+// (.face, .vol, .mtr), as TetGen's load_tetmesh reads them for -r.
 bool tetgenio::load_tetmesh(char *name, int object) {
   if (object == tetgenbehavior::MEDIT) return load_medit(name, 1);
-  return load_node(name);
+  // The file name may carry the .node extension (parse_commandline resolves it so).
+  std::string stem = name;
+  if (has_suffix(stem, ".node")) stem.resize(stem.size() - 5);
+  std::vector<char> buf(stem.begin(), stem.end());
+  buf.push_back('\0');
+  name = buf.data();
+  if (!load_node(name) || !load_tet(name)) return false;
+  if (exists(name, ".face") && !load_face(name)) return false;
+  if (exists(name, ".vol") && !load_vol(name)) return false;
+  if (exists(name, ".mtr") && !load_mtr(name)) return false;
+  return true;
 }
 
 namespace {

@@ -908,6 +908,142 @@ pub unsafe extern "C" fn idm_tetgen_extra_output(
     })
 }
 
+/// Items read from a TetGen mesh file by `idm_tetgen_read_items`. Free with
+/// `idm_tetgen_items_free`.
+#[derive(Default)]
+pub struct idm_tetgen_items {
+    per_item: usize,
+    num_attributes: usize,
+    indices: Vec<i32>,
+    attributes: Vec<f64>,
+    markers: Vec<i32>,
+    values: Vec<f64>,
+}
+
+/// The arrays of an `idm_tetgen_items`, lent until `idm_tetgen_items_free`. An empty array
+/// is NULL.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct idm_tetgen_items_view {
+    /// Number of items (tetrahedra, faces, volume bounds or sizes).
+    pub count: usize,
+    /// Indices per item: 4 for `.ele` (the corners of 10-node files too), 3 for `.face`, 0
+    /// for `.vol` and `.mtr`.
+    pub per_item: usize,
+    /// The indices, numbered from the `base` given to `idm_tetgen_read_items`.
+    pub indices: *const i32,
+    /// Attributes per item (`.ele`).
+    pub num_attributes: usize,
+    /// `num_attributes` per item.
+    pub attributes: *const f64,
+    /// One marker per item (`.face` with markers), else NULL.
+    pub markers: *const i32,
+    /// One value per item (`.vol`: maximum volume; `.mtr`: size), else NULL.
+    pub values: *const f64,
+}
+
+/// Reads a TetGen mesh file with idmesh's readers: `kind` 0 an `.ele` file, 1 a `.face`
+/// file, 2 a `.vol` file (`num_tets` lines), 3 an `.mtr` file (`num_points` lines, one size
+/// each); indices refer to `num_points` points numbered from `base` (0 or 1). Errors name the
+/// file and line.
+///
+/// # Safety
+/// `path` a NUL-terminated string; `out` valid for writing a pointer.
+#[no_mangle]
+pub unsafe extern "C" fn idm_tetgen_read_items(
+    path: *const c_char,
+    kind: i32,
+    num_points: usize,
+    num_tets: usize,
+    base: u32,
+    out: *mut *mut idm_tetgen_items,
+) -> idm_status {
+    use crate::io::tetgen::{parse_ele, parse_face, parse_mtr, parse_vol};
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let path = unsafe { c_str(path, "path") }?;
+        check_out(out, "out")?;
+        if base > 1 {
+            return Err(Failure::invalid(format!("base is {base}, must be 0 or 1")));
+        }
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            Failure::new(
+                idm_status::IDM_ERR_INVALID_INPUT,
+                format!("cannot read {path}: {e}"),
+            )
+        })?;
+        let bad = |e: crate::io::ParseError| {
+            Failure::new(idm_status::IDM_ERR_INVALID_INPUT, e.to_string())
+        };
+        let shift = |v: u32| v as i32 + base as i32;
+        let mut items = idm_tetgen_items::default();
+        match kind {
+            0 => {
+                let e = parse_ele(&text, path, base, num_points).map_err(bad)?;
+                items.per_item = 4;
+                items.indices = e.tets.iter().flatten().map(|&v| shift(v)).collect();
+                items.num_attributes = e.num_attributes;
+                items.attributes = e.attributes;
+            }
+            1 => {
+                let f = parse_face(&text, path, base, num_points).map_err(bad)?;
+                items.per_item = 3;
+                items.indices = f.items.iter().flatten().map(|&v| shift(v)).collect();
+                items.markers = f.markers;
+            }
+            2 => items.values = parse_vol(&text, path, num_tets).map_err(bad)?,
+            3 => items.values = parse_mtr(&text, path, num_points).map_err(bad)?,
+            k => return Err(Failure::invalid(format!("kind {k} is not 0, 1, 2 or 3"))),
+        }
+        unsafe { out.write(Box::into_raw(Box::new(items))) };
+        Ok(())
+    })
+}
+
+/// Lends the arrays of `p` in `*out`.
+///
+/// # Safety
+/// `p` a live `idm_tetgen_items`; `out` valid for writing the struct.
+#[no_mangle]
+pub unsafe extern "C" fn idm_tetgen_items_arrays(
+    p: *const idm_tetgen_items,
+    out: *mut idm_tetgen_items_view,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let p = unsafe { p.as_ref() }.ok_or_else(|| Failure::null("p"))?;
+        check_out(out, "out")?;
+        let count = p
+            .indices
+            .len()
+            .checked_div(p.per_item)
+            .unwrap_or(p.values.len());
+        let view = idm_tetgen_items_view {
+            count,
+            per_item: p.per_item,
+            indices: array_ptr(&p.indices),
+            num_attributes: p.num_attributes,
+            attributes: array_ptr(&p.attributes),
+            markers: array_ptr(&p.markers),
+            values: array_ptr(&p.values),
+        };
+        unsafe { out.write(view) };
+        Ok(())
+    })
+}
+
+/// Frees an `idm_tetgen_items`. NULL is a no-op.
+///
+/// # Safety
+/// `p` NULL or from `idm_tetgen_read_items`, not freed before.
+#[no_mangle]
+pub unsafe extern "C" fn idm_tetgen_items_free(p: *mut idm_tetgen_items) {
+    if !p.is_null() {
+        // SAFETY: the caller's contract; dropping plain vectors cannot panic.
+        drop(unsafe { Box::from_raw(p) });
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1100,6 +1236,64 @@ mod tests {
                 idm_status::IDM_ERR_INVALID_INPUT
             );
             assert!(last_error().contains("none.poly"), "{}", last_error());
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn mesh_files_are_read_as_items() {
+        let dir = std::env::temp_dir().join(format!("idmesh-ffi-items-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = |name: &str, text: &str| {
+            let p = dir.join(name);
+            std::fs::write(&p, text).unwrap();
+            CString::new(p.to_str().unwrap()).unwrap()
+        };
+        let ele = file("m.ele", "1 10 1\n1 1 2 3 4 5 5 5 5 5 5 7.5\n");
+        let vol = file("m.vol", "1\n1 0.25\n");
+        let mtr = file("m.mtr", "5 1\n0.1\n0.2\n0.3\n0.4\n0.5\n");
+        let face = file("m.face", "1 1\n1 1 2 3 9\n");
+        let mut p = null_mut();
+        let mut v = std::mem::MaybeUninit::uninit();
+        // SAFETY: valid strings and out-pointers; the items are freed once.
+        unsafe {
+            assert_eq!(
+                idm_tetgen_read_items(ele.as_ptr(), 0, 5, 0, 1, &mut p),
+                idm_status::IDM_OK
+            );
+            assert_eq!(
+                idm_tetgen_items_arrays(p, v.as_mut_ptr()),
+                idm_status::IDM_OK
+            );
+            let w = v.assume_init();
+            assert_eq!((w.count, w.per_item, w.num_attributes), (1, 4, 1));
+            assert_eq!(std::slice::from_raw_parts(w.indices, 4), &[1, 2, 3, 4]);
+            assert_eq!(*w.attributes, 7.5);
+            idm_tetgen_items_free(p);
+            for (path, kind, value) in [(&vol, 2, 0.25), (&mtr, 3, 0.1)] {
+                let st = idm_tetgen_read_items(path.as_ptr(), kind, 5, 1, 1, &mut p);
+                assert_eq!(st, idm_status::IDM_OK, "{}", last_error());
+                assert_eq!(
+                    idm_tetgen_items_arrays(p, v.as_mut_ptr()),
+                    idm_status::IDM_OK
+                );
+                let w = v.assume_init();
+                assert_eq!((w.per_item, *w.values), (0, value));
+                idm_tetgen_items_free(p);
+            }
+            let st = idm_tetgen_read_items(face.as_ptr(), 1, 5, 0, 1, &mut p);
+            assert_eq!(st, idm_status::IDM_OK);
+            assert_eq!(
+                idm_tetgen_items_arrays(p, v.as_mut_ptr()),
+                idm_status::IDM_OK
+            );
+            assert_eq!(*v.assume_init().markers, 9);
+            idm_tetgen_items_free(p);
+            // Wrong counts are errors naming the file.
+            let st = idm_tetgen_read_items(vol.as_ptr(), 2, 5, 3, 1, &mut p);
+            assert_eq!(st, idm_status::IDM_ERR_INVALID_INPUT);
+            assert!(last_error().contains("m.vol"), "{}", last_error());
+            idm_tetgen_items_free(null_mut());
         }
         std::fs::remove_dir_all(&dir).unwrap();
     }

@@ -93,9 +93,10 @@ int main() {
   {
     tetgenio in;
     tetra(in, 0);
-    in.numberofpointattributes = 1;
-    in.pointattributelist = new REAL[4]{1, 2, 3, 4};
-    expect_throw(in, "pQ", 10, "attributes");
+    // An anisotropic metric (6 values per point) is refused by name.
+    in.numberofpointmtrs = 6;
+    in.pointmtrlist = new REAL[24]();
+    expect_throw(in, "pmQ", 10, "isotropic");
   }
   {
     tetgenio in, out;

@@ -4,7 +4,8 @@
 #   tetgen_binary.sh LIBDIR CHECKER DATADIR[:PREFIX]...
 # Every .poly/.smesh/.off/.stl/.ply/.mesh file (named PREFIX*) of the first existing DATADIR is
 # meshed (a file idmesh itself fails on must fail here too) with
-# -pq1.414; the smallest one also with -pq1.414a<volume> (its volume bound checked).
+# -pq1.414; the smallest one also with -pq1.414a<volume> (its volume bound checked), and that
+# mesh refined with -rq1.414a<volume/4>.
 set -euo pipefail
 libdir="$1"; checker="$2"; shift 2
 tetgen=/usr/bin/tetgen
@@ -39,12 +40,13 @@ for ext in poly smesh off stl ply mesh; do
   cp "$f" "$work/"
   # A .smesh or .poly may take its points from the .node beside it.
   [[ -f "${f%.*}.node" ]] && cp "${f%.*}.node" "$work/"
-  if ! (cd "$work" && LD_LIBRARY_PATH="$libdir" timeout 600 "$tetgen" -pq1.414Q "$name" 2>/dev/null); then
+  if ! (cd "$work" && LD_LIBRARY_PATH="$libdir" timeout 600 "$tetgen" -pq1.414Q "$name" 2>"$work/stderr"); then
     # Input idmesh itself refuses (e.g. a non-planar facet) or fails on must fail here too.
     if "$checker" --fails "$work/$name" pq1.414; then
       echo "$name: tetgen on our library fails as idmesh does"
       continue
     fi
+    cat "$work/stderr" >&2
     echo "FAIL: tetgen -pq1.414 $name failed" >&2
     exit 1
   fi
@@ -63,4 +65,10 @@ box=$(awk 'NR > 1 && NF >= 4 {for (k = 2; k <= 4; k++) {if (!(k in lo) || $k < l
            END {printf "%.6g", (hi[2]-lo[2])*(hi[3]-lo[3])*(hi[4]-lo[4]) / 1000}' "$work/$stem.1.node")
 (cd "$work" && rm -f "$stem".1.* && LD_LIBRARY_PATH="$libdir" "$tetgen" -pq1.414a"$box"Q "$name")
 "$checker" "$work/$name" "$work/$stem.1" "$box"
-echo "OK: $n files with -pq1.414 and $name with -pq1.414a$box"
+
+# -r: that mesh refined again (load_tetmesh reads .node + .ele + .face) to a quarter of the
+# bound; the result must still mesh the same domain.
+quarter=$(awk -v b="$box" 'BEGIN {printf "%.6g", b / 4}')
+(cd "$work" && LD_LIBRARY_PATH="$libdir" "$tetgen" -rq1.414a"$quarter"Q "$stem.1")
+"$checker" "$work/$name" "$work/$stem.2" "$quarter"
+echo "OK: $n files with -pq1.414, $name with -pq1.414a$box and -rq1.414a$quarter"

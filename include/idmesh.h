@@ -312,6 +312,20 @@ typedef struct idm_mesher3d idm_mesher3d;
 typedef struct idm_plc3d idm_plc3d;
 
 /**
+ * What TetGen's `r`, `i`, `m` and point attributes bring beyond the PLC of an
+ * `idm_mesher3d` (inputs), and what `idm_mesher3d_tetgen` outputs beside the mesh (`o2`
+ * nodes, point attributes). Create with `idm_tetgen_extra_new`, free with
+ * `idm_tetgen_extra_free`.
+ */
+typedef struct idm_tetgen_extra idm_tetgen_extra;
+
+/**
+ * Items read from a TetGen mesh file by `idm_tetgen_read_items`. Free with
+ * `idm_tetgen_items_free`.
+ */
+typedef struct idm_tetgen_items idm_tetgen_items;
+
+/**
  * Meshing options. Fill it with `idm_options2d_default` first, then change what you need, so
  * that code keeps working if fields are ever appended. Booleans are `int32_t`: 0 is false,
  * anything else true.
@@ -611,6 +625,22 @@ typedef struct idm_tetgen_switches {
    * `g`: also write a Medit `.mesh` file.
    */
   int32_t medit;
+  /**
+   * `r`: refine the mesh given with `idm_tetgen_extra_set_mesh`.
+   */
+  int32_t refine;
+  /**
+   * `i`: insert the points given with `idm_tetgen_extra_set_addin`.
+   */
+  int32_t insert_points;
+  /**
+   * `m`: sizes from `idm_tetgen_extra_set_metric`.
+   */
+  int32_t metric;
+  /**
+   * `o2`: second-order (10-node) tetrahedra.
+   */
+  int32_t order2;
 } idm_tetgen_switches;
 
 /**
@@ -691,6 +721,70 @@ typedef struct idm_plc3d_view {
    */
   const double *regions;
 } idm_plc3d_view;
+
+/**
+ * What `idm_mesher3d_tetgen` output beside the mesh, lent until the next call on the
+ * `idm_tetgen_extra`. An empty array is NULL.
+ */
+typedef struct idm_tetgen_extra_view {
+  /**
+   * Number of `o2` nodes (after the mesh's vertices); 0 without `o2`.
+   */
+  size_t num_order2_nodes;
+  /**
+   * 3 doubles per `o2` node.
+   */
+  const double *order2_nodes;
+  /**
+   * With `o2`: 10 nodes per tetrahedron (0-based; corners, then the nodes on the edges
+   * (2,3), (0,3), (0,1), (1,2), (1,3), (0,2), TetGen 1.5's order); else NULL.
+   */
+  const uint32_t *tets10;
+  /**
+   * Attributes per output point; 0 when no point attributes were given.
+   */
+  size_t num_point_attributes;
+  /**
+   * `num_point_attributes` per output point (vertices, then `o2` nodes).
+   */
+  const double *point_attributes;
+} idm_tetgen_extra_view;
+
+/**
+ * The arrays of an `idm_tetgen_items`, lent until `idm_tetgen_items_free`. An empty array
+ * is NULL.
+ */
+typedef struct idm_tetgen_items_view {
+  /**
+   * Number of items (tetrahedra, faces, volume bounds or sizes).
+   */
+  size_t count;
+  /**
+   * Indices per item: 4 for `.ele` (the corners of 10-node files too), 3 for `.face`, 0
+   * for `.vol` and `.mtr`.
+   */
+  size_t per_item;
+  /**
+   * The indices, numbered from the `base` given to `idm_tetgen_read_items`.
+   */
+  const int32_t *indices;
+  /**
+   * Attributes per item (`.ele`).
+   */
+  size_t num_attributes;
+  /**
+   * `num_attributes` per item.
+   */
+  const double *attributes;
+  /**
+   * One marker per item (`.face` with markers), else NULL.
+   */
+  const int32_t *markers;
+  /**
+   * One value per item (`.vol`: maximum volume; `.mtr`: size), else NULL.
+   */
+  const double *values;
+} idm_tetgen_items_view;
 
 /**
  * Triangle's switches, parsed (`idm_triangle_parse_switches`). Booleans are `int32_t`: 0 or 1.
@@ -1387,38 +1481,172 @@ void idm_plc3d_free(struct idm_plc3d *p);
 /**
  * Meshes the handle's input as TetGen does for the switches `*sw`: with `p` the PLC is
  * refined (`idm_mesher3d_refine` with the options the switches ask for, coplanar facets merged
- * unless `M`), without it the points are tetrahedralized (`idm_mesher3d_delaunay`); with `d`
- * the PLC is only checked and no mesh is made; with `C` the mesh is validated. The switches'
- * options replace the handle's (its sizing and progress callbacks are kept). `*tetgen_code` (when not NULL)
- * gets TetGen's code for the outcome, also on failure: 0 success (including `IDM_INCOMPLETE`,
- * a mesh stopped at the `S` cap), 3 intersecting input, 10 other input errors, 2 internal
- * errors, 1 out of memory. Items named in input error messages are numbered from `base` (the
- * caller's `firstnumber`).
+ * unless `M`), without it the points are tetrahedralized (`idm_mesher3d_delaunay`); with `r`
+ * the mesh given in `extra` is remeshed, with `i` and `m` its points and sizes are used (see
+ * the module docs of `switches::tetgen_extra`); with `d` the PLC is only checked and no mesh
+ * is made; with `C` the mesh is validated. The switches' options replace the handle's (its
+ * sizing and progress callbacks are kept). `extra` (NULL: none) also receives what is output beside the mesh
+ * (`o2` nodes, point attributes; see `idm_tetgen_extra_output`). `*tetgen_code` (when not
+ * NULL) gets TetGen's code for the outcome, also on failure: 0 success (including
+ * `IDM_INCOMPLETE`, a mesh stopped at the `S` cap), 3 intersecting input, 10 other input
+ * errors, 2 internal errors, 1 out of memory. Items named in input error messages are
+ * numbered from `base` (the caller's `firstnumber`).
  *
  * # Safety
- * `m` a live handle; `sw` an `idm_tetgen_switches`; `tetgen_code` NULL or valid for a write.
+ * `m` a live handle; `sw` an `idm_tetgen_switches`; `extra` NULL or a live
+ * `idm_tetgen_extra`; `tetgen_code` NULL or valid for a write.
  */
 enum idm_status idm_mesher3d_tetgen(struct idm_mesher3d *m,
                                     const struct idm_tetgen_switches *sw,
                                     uint32_t base,
+                                    struct idm_tetgen_extra *extra,
                                     int32_t *tetgen_code);
 
 /**
  * Writes the handle's mesh to the files TetGen's command line writes for `*sw`:
  * `out_stem.node`, `.ele`, `.face` (unless `N`, `E`, `F`), `.edge` with `e`, `.neigh` with
  * `n`, numbered from `base` (0 or 1). Face and edge markers are written when `plc` is
- * nonzero, vertex markers when `node_markers` is, both unless `B`. "Writing ..." lines are
- * printed unless `Q`.
+ * nonzero, vertex markers when `node_markers` is, both unless `B`. The `o2` nodes and point
+ * attributes that `idm_mesher3d_tetgen` left in `extra` (NULL: none) are written too.
+ * "Writing ..." lines are printed unless `Q`.
  *
  * # Safety
- * `m` a live handle with a mesh; `out_stem` a NUL-terminated string; `sw` a switches struct.
+ * `m` a live handle with a mesh; `out_stem` a NUL-terminated string; `sw` a switches struct;
+ * `extra` NULL or a live `idm_tetgen_extra`.
  */
 enum idm_status idm_mesher3d_write_tetgen(const struct idm_mesher3d *m,
                                           const char *out_stem,
                                           const struct idm_tetgen_switches *sw,
                                           int32_t plc,
                                           int32_t node_markers,
+                                          uint32_t base,
+                                          const struct idm_tetgen_extra *extra);
+
+/**
+ * Creates an empty `idm_tetgen_extra` in `*out`.
+ *
+ * # Safety
+ * `out` valid for writing a pointer.
+ */
+enum idm_status idm_tetgen_extra_new(struct idm_tetgen_extra **out);
+
+/**
+ * Frees an `idm_tetgen_extra`. NULL is a no-op.
+ *
+ * # Safety
+ * `e` NULL or from `idm_tetgen_extra_new`, not freed before.
+ */
+void idm_tetgen_extra_free(struct idm_tetgen_extra *e);
+
+/**
+ * Gives the mesh to refine with `r` (TetGen's `tetrahedronlist`, `tetrahedronattributelist`,
+ * `tetrahedronvolumelist`, `trifacelist`, `trifacemarkerlist`), indices numbered from `base`
+ * into the handle's points: `num_tets` tetrahedra of `corners` nodes (the first 4 used),
+ * `num_attributes` attributes per tetrahedron (the first used; NULL with 0), one volume bound
+ * per tetrahedron or NULL, `num_faces` triangles with markers (NULL: 0). Replaces what was
+ * given before.
+ *
+ * # Safety
+ * Every non-NULL pointer valid for the stated number of values.
+ */
+enum idm_status idm_tetgen_extra_set_mesh(struct idm_tetgen_extra *e,
+                                          const int32_t *tets,
+                                          size_t num_tets,
+                                          size_t corners,
+                                          const double *attributes,
+                                          size_t num_attributes,
+                                          const double *volumes,
+                                          const int32_t *faces,
+                                          const int32_t *face_markers,
+                                          size_t num_faces,
                                           uint32_t base);
+
+/**
+ * Gives the points to insert with `i` (TetGen's `addin->pointlist`): `num_points` points of
+ * 3 doubles. Replaces what was given before.
+ *
+ * # Safety
+ * `points` valid for `3 * num_points` doubles.
+ */
+enum idm_status idm_tetgen_extra_set_addin(struct idm_tetgen_extra *e,
+                                           const double *points,
+                                           size_t num_points);
+
+/**
+ * Gives the sizes for `m` (TetGen's `pointmtrlist` with `numberofpointmtrs` 1): a background
+ * mesh of `num_points` points (3 doubles each) with `sizes_per_point` values per point (only
+ * 1 is supported: an isotropic size; 0 or less means no bound there) and `num_tets`
+ * tetrahedra of `corners` nodes numbered from `base` (NULL with 0: the Delaunay
+ * tetrahedralization of the points, or with `r` the mesh being refined when the points are
+ * its points). Replaces what was given before.
+ *
+ * # Safety
+ * Every non-NULL pointer valid for the stated number of values.
+ */
+enum idm_status idm_tetgen_extra_set_metric(struct idm_tetgen_extra *e,
+                                            const double *points,
+                                            size_t num_points,
+                                            const double *sizes,
+                                            size_t sizes_per_point,
+                                            const int32_t *tets,
+                                            size_t num_tets,
+                                            size_t corners,
+                                            uint32_t base);
+
+/**
+ * Gives `num_attributes` attributes per input point (TetGen's `pointattributelist`) for
+ * `num_points` points: copied to the input points of the output and interpolated at the
+ * others (see `idm_tetgen_extra_output`). Replaces what was given before.
+ *
+ * # Safety
+ * `attributes` valid for `num_points * num_attributes` doubles.
+ */
+enum idm_status idm_tetgen_extra_set_point_attributes(struct idm_tetgen_extra *e,
+                                                      const double *attributes,
+                                                      size_t num_points,
+                                                      size_t num_attributes);
+
+/**
+ * Lends what the last `idm_mesher3d_tetgen` call with `e` output beside the mesh.
+ *
+ * # Safety
+ * `e` a live `idm_tetgen_extra`; `out` valid for writing the struct.
+ */
+enum idm_status idm_tetgen_extra_output(const struct idm_tetgen_extra *e,
+                                        struct idm_tetgen_extra_view *out);
+
+/**
+ * Reads a TetGen mesh file with idmesh's readers: `kind` 0 an `.ele` file, 1 a `.face`
+ * file, 2 a `.vol` file (`num_tets` lines), 3 an `.mtr` file (`num_points` lines, one size
+ * each); indices refer to `num_points` points numbered from `base` (0 or 1). Errors name the
+ * file and line.
+ *
+ * # Safety
+ * `path` a NUL-terminated string; `out` valid for writing a pointer.
+ */
+enum idm_status idm_tetgen_read_items(const char *path,
+                                      int32_t kind,
+                                      size_t num_points,
+                                      size_t num_tets,
+                                      uint32_t base,
+                                      struct idm_tetgen_items **out);
+
+/**
+ * Lends the arrays of `p` in `*out`.
+ *
+ * # Safety
+ * `p` a live `idm_tetgen_items`; `out` valid for writing the struct.
+ */
+enum idm_status idm_tetgen_items_arrays(const struct idm_tetgen_items *p,
+                                        struct idm_tetgen_items_view *out);
+
+/**
+ * Frees an `idm_tetgen_items`. NULL is a no-op.
+ *
+ * # Safety
+ * `p` NULL or from `idm_tetgen_read_items`, not freed before.
+ */
+void idm_tetgen_items_free(struct idm_tetgen_items *p);
 
 /**
  * Parses a switch string as Triangle's `triangulate()` takes it (`"pq30a0.1zQ"`; a leading

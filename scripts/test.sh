@@ -41,7 +41,7 @@ bash scripts/ctest.sh
 echo "== C/C++ harness again under ASan + UBSan (leak checks on)"
 IDMESH_SANITIZE=address,undefined BUILD_DIR=build/asan bash scripts/ctest.sh
 echo "== C/C++ tests under valgrind (no invalid access, no definite leak)"
-for t in test_c_api test_mesher3d test_progress triangle_client_c triangle_client_cxx tetgen_client_idmesh tetgen_bad_input_idmesh; do
+for t in test_c_api test_mesher3d test_progress triangle_client_c triangle_client_cxx tetgen_client_idmesh tetgen_bad_input_idmesh tetgen_switches_idmesh; do
   if ! (cd build/cmake/ctests && valgrind -q --error-exitcode=99 --leak-check=full \
         --errors-for-leak-kinds=definite "./$t" >"/tmp/idmesh-valgrind-$t.log" 2>&1); then
     echo "valgrind found errors in $t:"; tail -40 "/tmp/idmesh-valgrind-$t.log"; exit 1

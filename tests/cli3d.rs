@@ -198,7 +198,8 @@ fn bad_switches_exit_1_with_a_message_naming_them_and_write_nothing() {
     for (args, needle) in [
         (vec!["-pqx", "3d_cube.poly"], "-x"),
         (vec!["-pc", "3d_cube.poly"], "convex hull"),
-        (vec!["-pr", "3d_cube.poly"], "-r"),
+        (vec!["-po3", "3d_cube.poly"], "-o3"),
+        (vec!["-rq", "3d_cube"], "3d_cube.node"),
         (vec!["-pa0", "3d_cube.poly"], "greater than zero"),
         (vec!["-pq1.2/15/170", "3d_cube.poly"], "maximum dihedral"),
         (vec!["-p"], "no input file"),
@@ -550,9 +551,20 @@ fn coplanar_triangles_are_merged_unless_minus_m() {
         ok(&idmesh(&d.0, &[switches, "c.off"]));
         let m = read_mesh(&d, "c.1", 0);
         assert!(close(m.volume(), 1.0), "{switches}: volume {}", m.volume());
-        let edges = parse_edge(&d.read("c.1.edge"), "edge", 0, m.points.len()).unwrap();
-        let on_diagonal = edges.items.iter().any(|e| {
-            let [a, b] = e.map(|v| m.points[v as usize]);
+        // The .edge file lists every edge (TetGen's -e); the subsegments are those with a
+        // marker... which a .off input does not give: ask the library for them.
+        let _ = parse_edge(&d.read("c.1.edge"), "edge", 0, m.points.len()).unwrap();
+        let plc = idmesh::io::tetgen::parse_off(CUBE_TRIANGLES, "c.off")
+            .unwrap()
+            .plc;
+        let opts = idmesh::Options3 {
+            radius_edge: Some(1.2),
+            merge_coplanar: !switches.contains('M'),
+            ..idmesh::Options3::default()
+        };
+        let mesh = idmesh::tetrahedralize(&plc, &opts).unwrap();
+        let on_diagonal = mesh.edges.iter().any(|e| {
+            let [a, b] = e.map(|v| mesh.vertices[v as usize]);
             (0..3).filter(|&k| a[k] == b[k]).count() < 2
         });
         assert_eq!(on_diagonal, diagonals, "{switches}");

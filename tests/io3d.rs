@@ -584,10 +584,15 @@ fn output_file_readers_check_ranges() {
     let e = parse_ele("1 4 0\n1 1 2 3 9\n", "o.ele", 1, 5).unwrap_err();
     assert_eq!(e.line, 2);
     assert!(e.message.contains("corner 9 is out of range"), "{e}");
-    assert!(parse_ele("1 10 0\n", "o.ele", 1, 5)
+    assert!(parse_ele("1 6 0\n", "o.ele", 1, 5)
         .unwrap_err()
         .message
-        .contains("4 nodes"));
+        .contains("4 or 10 nodes"));
+    // A 10-node (-o2) file: the corners are read, the edge nodes range-checked.
+    let e = parse_ele("1 10 1\n1 1 2 3 4 5 5 5 5 5 5 2.5\n", "o.ele", 1, 5).unwrap();
+    assert_eq!((e.tets, e.attributes), (vec![[0, 1, 2, 3]], vec![2.5]));
+    let e = parse_ele("1 10 0\n1 1 2 3 4 5 5 5 5 5 6\n", "o.ele", 1, 5).unwrap_err();
+    assert!(e.message.contains("node 6 is out of range"), "{e}");
     let e = parse_neigh("1 4\n1 2 -1 -1 -1\n", "o.neigh", 1, 1).unwrap_err();
     assert!(e.message.contains("neighbour 2 is out of range"), "{e}");
     let e = parse_face("2 0\n0 0 1 2\n", "o.face", 0, 3).unwrap_err();

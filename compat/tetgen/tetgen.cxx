@@ -43,6 +43,16 @@ struct Mesher {
   Mesher &operator=(const Mesher &) = delete;
 };
 
+struct Extra {
+  idm_tetgen_extra *e = nullptr;
+  Extra() {
+    if (idm_tetgen_extra_new(&e) != IDM_OK) throw 1;
+  }
+  ~Extra() { idm_tetgen_extra_free(e); }
+  Extra(const Extra &) = delete;
+  Extra &operator=(const Extra &) = delete;
+};
+
 struct Plc {
   idm_plc3d *p = nullptr;
   ~Plc() { idm_plc3d_free(p); }
@@ -196,7 +206,10 @@ std::string switch_string(const tetgenbehavior *b) {
   flag(b->docheck, "C");
   flag(b->quiet, "Q");
   flag(b->verbose, "V");
-  flag(b->order != 1, "o");
+  if (b->order != 1) {
+    snprintf(num, sizeof num, " o%d ", b->order);
+    s += num;
+  }
   flag(b->optlevel != 2 || b->optscheme != 7, "O");
   flag(b->epsilon != 1.0e-8, "T");
   if (b->steinerleft >= 0) {
@@ -233,6 +246,10 @@ void apply(tetgenbehavior *b, const idm_tetgen_switches &w) {
   b->verbose = w.verbose;
   b->vtkview = w.vtk;
   b->meditview = w.medit;
+  b->refine = w.refine;
+  b->insertaddpoints = w.insert_points;
+  b->metric = w.metric;
+  b->order = w.order2 ? 2 : 1;
 }
 
 // The user's tetunsuitable as idmesh's sizing callback. A C++ exception it throws must not
@@ -305,6 +322,48 @@ void load_input(Mesher &mh, const tetgenio *in, bool quiet) {
   }
 }
 
+// Gives idmesh what r, i, m and point attributes take from `in`, `addin` and `bgmin`.
+void load_extra(idm_tetgen_extra *e, const idm_tetgen_switches &w, const tetgenio *in,
+                const tetgenio *addin, const tetgenio *bgmin) {
+  const bool quiet = w.quiet != 0;
+  auto check = [quiet](idm_status s) {
+    if (s != IDM_OK) fail(code_of(s), quiet);
+  };
+  auto count = [](int n) { return (size_t)(n > 0 ? n : 0); };
+  const uint32_t b = in->firstnumber == 1 ? 1 : 0;
+  if (w.refine) {
+    if (in->tetrahedronlist == nullptr || in->numberoftetrahedra <= 0) {
+      idm_tetgen_report("-r: the input has no tetrahedra (tetrahedronlist) to refine");
+      fail(10, quiet);
+    }
+    check(idm_tetgen_extra_set_mesh(
+        e, in->tetrahedronlist, count(in->numberoftetrahedra), count(in->numberofcorners),
+        in->tetrahedronattributelist, count(in->numberoftetrahedronattributes),
+        in->tetrahedronvolumelist, in->trifacelist, in->trifacemarkerlist,
+        in->trifacelist != nullptr ? count(in->numberoftrifaces) : 0, b));
+  }
+  if (w.insert_points && addin != nullptr && addin->pointlist != nullptr)
+    check(idm_tetgen_extra_set_addin(e, addin->pointlist, count(addin->numberofpoints)));
+  if (w.metric) {
+    const tetgenio *src = bgmin != nullptr && bgmin->pointmtrlist != nullptr ? bgmin : in;
+    if (src->pointmtrlist == nullptr) {
+      idm_tetgen_report("-m: no sizes given (pointmtrlist of the input or of bgmin)");
+      fail(10, quiet);
+    }
+    // The input's own tetrahedra are its background mesh only with r.
+    const bool tets = src != in || w.refine;
+    check(idm_tetgen_extra_set_metric(
+        e, src->pointlist, count(src->numberofpoints), src->pointmtrlist,
+        count(src->numberofpointmtrs), tets ? src->tetrahedronlist : nullptr,
+        tets && src->tetrahedronlist != nullptr ? count(src->numberoftetrahedra) : 0,
+        count(src->numberofcorners), src->firstnumber == 1 ? 1 : 0));
+  }
+  if (in->numberofpointattributes > 0 && in->pointattributelist != nullptr)
+    check(idm_tetgen_extra_set_point_attributes(e, in->pointattributelist,
+                                                count(in->numberofpoints),
+                                                count(in->numberofpointattributes)));
+}
+
 uint64_t edge_key(uint32_t a, uint32_t b) {
   if (a > b) std::swap(a, b);
   return ((uint64_t)a << 32) | b;
@@ -334,8 +393,8 @@ const int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 const int kEdge[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
 
 // Fills `out` from the mesh as TetGen fills it for the switches `w`.
-void fill_output(idm_mesher3d *m, const idm_tetgen_switches &w, const tetgenio *in,
-                 tetgenio *out) {
+void fill_output(idm_mesher3d *m, idm_tetgen_extra *ex, const idm_tetgen_switches &w,
+                 const tetgenio *in, tetgenio *out) {
   auto check = [&w](idm_status s) {
     if (s != IDM_OK) fail(code_of(s), w.quiet != 0);
   };
@@ -352,21 +411,35 @@ void fill_output(idm_mesher3d *m, const idm_tetgen_switches &w, const tetgenio *
   check(idm_mesher3d_faces(m, &faces, &fmark, &nf));
   check(idm_mesher3d_edges(m, &edges, &emark, &ne));
   check(idm_mesher3d_tet_attributes(m, &attr, &na));
+  idm_tetgen_extra_view xv;
+  check(idm_tetgen_extra_output(ex, &xv));
 
+  // With o2 the edge nodes follow the vertices, and each tetrahedron lists 10 nodes.
+  const size_t np = nv + xv.num_order2_nodes;
   const int b = w.zero_based ? 0 : in->firstnumber;
   out->firstnumber = b;
   out->mesh_dim = 3;
-  out->numberofpoints = (int)nv;
-  out->pointlist = new_array<REAL>(3 * nv);
+  out->numberofpoints = (int)np;
+  out->pointlist = new_array<REAL>(3 * np);
   for (size_t i = 0; i < 3 * nv; i++) out->pointlist[i] = xyz[i];
+  for (size_t i = 0; i < 3 * xv.num_order2_nodes; i++)
+    out->pointlist[3 * nv + i] = xv.order2_nodes[i];
   if (!w.no_markers) {
-    out->pointmarkerlist = new_array<int>(nv);
-    for (size_t i = 0; i < nv; i++) out->pointmarkerlist[i] = vmark[i];
+    out->pointmarkerlist = new_array<int>(np);
+    for (size_t i = 0; i < np; i++) out->pointmarkerlist[i] = i < nv ? vmark[i] : 0;
+  }
+  if (xv.num_point_attributes > 0) {
+    size_t k = xv.num_point_attributes;
+    out->numberofpointattributes = (int)k;
+    out->pointattributelist = new_array<REAL>(k * np);
+    for (size_t i = 0; i < k * np; i++) out->pointattributelist[i] = xv.point_attributes[i];
   }
   out->numberoftetrahedra = (int)nt;
-  out->numberofcorners = 4;
-  out->tetrahedronlist = new_array<int>(4 * nt);
-  for (size_t i = 0; i < 4 * nt; i++) out->tetrahedronlist[i] = (int)tets[i] + b;
+  const size_t nc = xv.tets10 != nullptr ? 10 : 4;
+  const uint32_t *tnodes = xv.tets10 != nullptr ? xv.tets10 : tets;
+  out->numberofcorners = (int)nc;
+  out->tetrahedronlist = new_array<int>(nc * nt);
+  for (size_t i = 0; i < nc * nt; i++) out->tetrahedronlist[i] = (int)tnodes[i] + b;
   if (w.region_attributes && na == nt && nt > 0) {
     out->numberoftetrahedronattributes = 1;
     out->tetrahedronattributelist = new_array<REAL>(nt);
@@ -619,11 +692,91 @@ bool tetgenio::load_stl(char *name) { return read_with(this, name, ".stl"); }
 bool tetgenio::load_medit(char *name, int) { return read_with(this, name, ".mesh"); }
 bool tetgenio::load_vtk(char *name) { return refuse_load("VTK", name); }
 bool tetgenio::load_edge(char *name) { return refuse_load(".edge", name); }
-bool tetgenio::load_face(char *name) { return refuse_load(".face", name); }
-bool tetgenio::load_tet(char *name) { return refuse_load(".ele", name); }
-bool tetgenio::load_vol(char *name) { return refuse_load(".vol", name); }
 bool tetgenio::load_var(char *name) { return refuse_load(".var", name); }
-bool tetgenio::load_mtr(char *name) { return refuse_load(".mtr", name); }
+
+namespace {
+struct Items {
+  idm_tetgen_items *p = nullptr;
+  idm_tetgen_items_view v;
+  ~Items() { idm_tetgen_items_free(p); }
+};
+
+// Reads `name` + `ext` (kind as idm_tetgen_read_items) for `io`'s points and tetrahedra.
+bool read_items(const tetgenio *io, const char *name, const char *ext, int kind, Items &it) {
+  std::string path = name;
+  if (!has_suffix(path, ext)) path += ext;
+  if (idm_tetgen_read_items(path.c_str(), kind, (size_t)(io->numberofpoints > 0 ? io->numberofpoints : 0),
+                            (size_t)(io->numberoftetrahedra > 0 ? io->numberoftetrahedra : 0),
+                            io->firstnumber == 1 ? 1 : 0, &it.p) != IDM_OK ||
+      idm_tetgen_items_arrays(it.p, &it.v) != IDM_OK) {
+    fprintf(stderr, "Error:  %s\n", idm_last_error());
+    return false;
+  }
+  return true;
+}
+
+bool exists(const char *name, const char *ext) {
+  std::string path = name;
+  if (!has_suffix(path, ext)) path += ext;
+  FILE *f = fopen(path.c_str(), "r");
+  if (f != nullptr) fclose(f);
+  return f != nullptr;
+}
+}  // namespace
+
+bool tetgenio::load_tet(char *name) {
+  Items it;
+  if (!read_items(this, name, ".ele", 0, it)) return false;
+  delete[] tetrahedronlist;
+  delete[] tetrahedronattributelist;
+  tetrahedronattributelist = nullptr;
+  numberoftetrahedra = (int)it.v.count;
+  numberofcorners = 4;
+  tetrahedronlist = new_array<int>(4 * it.v.count);
+  for (size_t i = 0; i < 4 * it.v.count; i++) tetrahedronlist[i] = it.v.indices[i];
+  numberoftetrahedronattributes = (int)it.v.num_attributes;
+  if (it.v.num_attributes > 0) {
+    size_t n = it.v.num_attributes * it.v.count;
+    tetrahedronattributelist = new_array<REAL>(n);
+    for (size_t i = 0; i < n; i++) tetrahedronattributelist[i] = it.v.attributes[i];
+  }
+  return true;
+}
+
+bool tetgenio::load_face(char *name) {
+  Items it;
+  if (!read_items(this, name, ".face", 1, it)) return false;
+  delete[] trifacelist;
+  delete[] trifacemarkerlist;
+  trifacemarkerlist = nullptr;
+  numberoftrifaces = (int)it.v.count;
+  trifacelist = new_array<int>(3 * it.v.count);
+  for (size_t i = 0; i < 3 * it.v.count; i++) trifacelist[i] = it.v.indices[i];
+  if (it.v.markers != nullptr) {
+    trifacemarkerlist = new_array<int>(it.v.count);
+    for (size_t i = 0; i < it.v.count; i++) trifacemarkerlist[i] = it.v.markers[i];
+  }
+  return true;
+}
+
+bool tetgenio::load_vol(char *name) {
+  Items it;
+  if (!read_items(this, name, ".vol", 2, it)) return false;
+  delete[] tetrahedronvolumelist;
+  tetrahedronvolumelist = new_array<REAL>(it.v.count);
+  for (size_t i = 0; i < it.v.count; i++) tetrahedronvolumelist[i] = it.v.values[i];
+  return true;
+}
+
+bool tetgenio::load_mtr(char *name) {
+  Items it;
+  if (!read_items(this, name, ".mtr", 3, it)) return false;
+  delete[] pointmtrlist;
+  numberofpointmtrs = 1;
+  pointmtrlist = new_array<REAL>(it.v.count);
+  for (size_t i = 0; i < it.v.count; i++) pointmtrlist[i] = it.v.values[i];
+  return true;
+}
 bool tetgenio::load_pbc(char *name) { return refuse_load(".pbc", name); }
 
 bool tetgenio::load_plc(char *name, int object) {
@@ -648,10 +801,21 @@ bool tetgenio::load_plc(char *name, int object) {
   }
 }
 
-// Only the points: refining a given mesh (-r) is refused, so its elements are never used.
+// The points, the tetrahedra (.ele), and when present the faces, volume bounds and sizes
+// (.face, .vol, .mtr), as TetGen's load_tetmesh reads them for -r.
 bool tetgenio::load_tetmesh(char *name, int object) {
   if (object == tetgenbehavior::MEDIT) return load_medit(name, 1);
-  return load_node(name);
+  // The file name may carry the .node extension (parse_commandline resolves it so).
+  std::string stem = name;
+  if (has_suffix(stem, ".node")) stem.resize(stem.size() - 5);
+  std::vector<char> buf(stem.begin(), stem.end());
+  buf.push_back('\0');
+  name = buf.data();
+  if (!load_node(name) || !load_tet(name)) return false;
+  if (exists(name, ".face") && !load_face(name)) return false;
+  if (exists(name, ".vol") && !load_vol(name)) return false;
+  if (exists(name, ".mtr") && !load_mtr(name)) return false;
+  return true;
 }
 
 namespace {
@@ -774,8 +938,6 @@ void tetgenio::save_faces2smesh(char *name) {
 
 void tetrahedralize(tetgenbehavior *b, tetgenio *in, tetgenio *out, tetgenio *addin,
                     tetgenio *bgmin) {
-  (void)addin;  // used by TetGen only with -i, which the switch parser refuses
-  (void)bgmin;  // used by TetGen only with -m, likewise refused
   const bool quiet0 = b != nullptr && b->quiet;
   if (b == nullptr || in == nullptr) {
     idm_tetgen_report("tetrahedralize: the tetgenbehavior or the input is NULL");
@@ -785,10 +947,6 @@ void tetrahedralize(tetgenbehavior *b, tetgenio *in, tetgenio *out, tetgenio *ad
   idm_tetgen_switches w;
   if (idm_tetgen_parse_switches(text.c_str(), &w) != IDM_OK) fail(10, quiet0);
   const bool quiet = w.quiet != 0;
-  if (in->numberofpointattributes > 0) {
-    idm_tetgen_report("point attributes (pointattributelist) are not supported by idmesh");
-    fail(10, quiet);
-  }
   if (in->numberoffacetconstraints > 0 || in->numberofsegmentconstraints > 0) {
     idm_tetgen_report(
         "facet and segment constraints (facetconstraintlist, segmentconstraintlist) are not "
@@ -798,12 +956,14 @@ void tetrahedralize(tetgenbehavior *b, tetgenio *in, tetgenio *out, tetgenio *ad
   try {
     Mesher mh;
     load_input(mh, in, quiet);
+    Extra ex;
+    load_extra(ex.e, w, in, addin, bgmin);
     Sizing sizing{in->tetunsuitable, nullptr};
     if (in->tetunsuitable != nullptr &&
         idm_mesher3d_set_sizing(mh.m, call_tetunsuitable, &sizing) != IDM_OK)
       fail(2, quiet);
     int32_t code = 0;
-    idm_status s = idm_mesher3d_tetgen(mh.m, &w, (uint32_t)(in->firstnumber == 1 ? 1 : 0), &code);
+    idm_status s = idm_mesher3d_tetgen(mh.m, &w, (uint32_t)(in->firstnumber == 1 ? 1 : 0), ex.e, &code);
     if (sizing.error) std::rethrow_exception(sizing.error);
     if (s == IDM_INCOMPLETE) {
       if (!quiet) fprintf(stderr, "Warning:  %s\n", idm_last_error());
@@ -815,11 +975,11 @@ void tetrahedralize(tetgenbehavior *b, tetgenio *in, tetgenio *out, tetgenio *ad
       const char *stem = b->outfilename[0] != '\0' ? b->outfilename : "tetgen-tmp";
       int base = w.zero_based ? 0 : in->firstnumber;
       if (idm_mesher3d_write_tetgen(mh.m, stem, &w, w.plc, in->pointmarkerlist != nullptr,
-                                    (uint32_t)(base == 1 ? 1 : 0)) != IDM_OK)
+                                    (uint32_t)(base == 1 ? 1 : 0), ex.e) != IDM_OK)
         fail(10, quiet);
       return;
     }
-    fill_output(mh.m, w, in, out);
+    fill_output(mh.m, ex.e, w, in, out);
   } catch (const std::bad_alloc &) {
     idm_tetgen_report("out of memory");
     fail(1, quiet);

@@ -13,14 +13,21 @@
  * Switches (one parser, shared with `idmesh tetgen`):
  *   supported: p q[ratio] a[volume] a A S[n] Y M z f e n nn N E F B I d C Q V k g, and D, J
  *              (accepted: idmesh output is always conforming Delaunay and keeps all vertices);
- *              q/0 (a zero minimum dihedral angle).
- *   refused:   every other letter (c r i m T X w R O o s l L b v G K j, p<tolerance>,
+ *              q/0 (a zero minimum dihedral angle); X (accepted: idmesh is always exact);
+ *              r (tetrahedronlist, tetrahedronattributelist, tetrahedronvolumelist with a,
+ *              trifacelist + trifacemarkerlist: the given mesh's boundary and region faces are
+ *              remeshed with its points kept, not refined in place); i (addin's points);
+ *              m (pointmtrlist of bgmin with its tetrahedra, else of in: 1 size per point,
+ *              interpolated linearly); o2 (10-node tetrahedra, TetGen 1.5's node order).
+ *   refused:   every other letter (c T w R O o/<angle> s l L b v G K j, p<tolerance>,
  *              q<ratio>/<angle> with a nonzero angle): tetrahedralize throws 10 and the
  *              message (printed unless Q, and in idm_last_error()) names the switch.
- * Input refused (throw 10, message says which): point attributes, point metrics
- *   (pointmtrlist), facet and segment constraints, a given tetrahedron list (-r).
- * Output: pointlist, pointmarkerlist (unless B), tetrahedronlist (4 corners),
- *   tetrahedronattributelist (A), neighborlist (n), trifacelist + trifacemarkerlist (boundary
+ * Input refused (throw 10, message says which): facet and segment constraints, anisotropic
+ *   metrics (numberofpointmtrs other than 1).
+ * Output: pointlist (with o2 the edge nodes after the vertices), pointmarkerlist (unless B),
+ *   pointattributelist (input attributes, linearly interpolated at Steiner points),
+ *   tetrahedronlist (4 or 10 corners), tetrahedronattributelist (A, or r with attributes),
+ *   neighborlist (n), trifacelist + trifacemarkerlist (boundary
  *   and facet faces; every face with f) + adjtetlist (nn), edgelist + edgemarkerlist (e: every
  *   mesh edge, marker of the subsegment it lies on, else 0), and with the 1.6 layout
  *   point2tetlist (always), tet2facelist (f), tet2edgelist and face2edgelist (e).

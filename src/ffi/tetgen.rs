@@ -22,11 +22,12 @@ use std::path::Path;
 use crate::error::{Error, InputError};
 use crate::ffi::idm_mesher3d;
 use crate::ffi::{array_ptr, check_out, guard, idm_status, input_slice, write_out, Failure};
+use crate::ffi::{optional_slice, scaled};
 use crate::input3d::check_plc;
 use crate::io::exchange::Format;
 use crate::io::tetgen::read_input;
-use crate::mesh3d::{delaunay3d, tetrahedralize};
 use crate::switches::tetgen::{parse_string, renumber, resolve, write_outputs, TetSwitches};
+use crate::switches::tetgen_extra::{mesh_for, Extra, GivenMesh, Metric, Post};
 
 /// TetGen's switches as parsed by `idm_tetgen_parse_switches` (the letter of each field is in
 /// its comment). Booleans are `int32_t`, 0 false.
@@ -79,6 +80,14 @@ pub struct idm_tetgen_switches {
     pub vtk: i32,
     /// `g`: also write a Medit `.mesh` file.
     pub medit: i32,
+    /// `r`: refine the mesh given with `idm_tetgen_extra_set_mesh`.
+    pub refine: i32,
+    /// `i`: insert the points given with `idm_tetgen_extra_set_addin`.
+    pub insert_points: i32,
+    /// `m`: sizes from `idm_tetgen_extra_set_metric`.
+    pub metric: i32,
+    /// `o2`: second-order (10-node) tetrahedra.
+    pub order2: i32,
 }
 
 impl From<&TetSwitches> for idm_tetgen_switches {
@@ -109,6 +118,10 @@ impl From<&TetSwitches> for idm_tetgen_switches {
             verbose: s.verbose.into(),
             vtk: s.formats.contains(&Format::Vtk).into(),
             medit: s.formats.contains(&Format::Medit).into(),
+            refine: s.refine.into(),
+            insert_points: s.insert_points.into(),
+            metric: s.metric.into(),
+            order2: s.order2.into(),
         }
     }
 }
@@ -150,6 +163,10 @@ impl idm_tetgen_switches {
                 .filter(|&(on, _)| on != 0)
                 .map(|(_, f)| f)
                 .collect(),
+            refine: self.refine != 0,
+            insert_points: self.insert_points != 0,
+            metric: self.metric != 0,
+            order2: self.order2 != 0,
         })
     }
 }
@@ -486,21 +503,26 @@ fn tetgen_code(e: &Error) -> i32 {
 
 /// Meshes the handle's input as TetGen does for the switches `*sw`: with `p` the PLC is
 /// refined (`idm_mesher3d_refine` with the options the switches ask for, coplanar facets merged
-/// unless `M`), without it the points are tetrahedralized (`idm_mesher3d_delaunay`); with `d`
-/// the PLC is only checked and no mesh is made; with `C` the mesh is validated. The switches'
-/// options replace the handle's (its sizing and progress callbacks are kept). `*tetgen_code` (when not NULL)
-/// gets TetGen's code for the outcome, also on failure: 0 success (including `IDM_INCOMPLETE`,
-/// a mesh stopped at the `S` cap), 3 intersecting input, 10 other input errors, 2 internal
-/// errors, 1 out of memory. Items named in input error messages are numbered from `base` (the
-/// caller's `firstnumber`).
+/// unless `M`), without it the points are tetrahedralized (`idm_mesher3d_delaunay`); with `r`
+/// the mesh given in `extra` is remeshed, with `i` and `m` its points and sizes are used (see
+/// the module docs of `switches::tetgen_extra`); with `d` the PLC is only checked and no mesh
+/// is made; with `C` the mesh is validated. The switches' options replace the handle's (its
+/// sizing and progress callbacks are kept). `extra` (NULL: none) also receives what is output beside the mesh
+/// (`o2` nodes, point attributes; see `idm_tetgen_extra_output`). `*tetgen_code` (when not
+/// NULL) gets TetGen's code for the outcome, also on failure: 0 success (including
+/// `IDM_INCOMPLETE`, a mesh stopped at the `S` cap), 3 intersecting input, 10 other input
+/// errors, 2 internal errors, 1 out of memory. Items named in input error messages are
+/// numbered from `base` (the caller's `firstnumber`).
 ///
 /// # Safety
-/// `m` a live handle; `sw` an `idm_tetgen_switches`; `tetgen_code` NULL or valid for a write.
+/// `m` a live handle; `sw` an `idm_tetgen_switches`; `extra` NULL or a live
+/// `idm_tetgen_extra`; `tetgen_code` NULL or valid for a write.
 #[no_mangle]
 pub unsafe extern "C" fn idm_mesher3d_tetgen(
     m: *mut idm_mesher3d,
     sw: *const idm_tetgen_switches,
     base: u32,
+    extra: *mut idm_tetgen_extra,
     tetgen_code: *mut i32,
 ) -> idm_status {
     let mut code = 2;
@@ -508,6 +530,7 @@ pub unsafe extern "C" fn idm_mesher3d_tetgen(
         // SAFETY (all blocks here): the caller's contract, checked as far as possible.
         let m = unsafe { m.as_mut() }.ok_or_else(|| Failure::null("m"))?;
         let sw = unsafe { switches_of(sw) }?;
+        let mut extra = unsafe { extra.as_mut() };
         code = 10;
         m.mesh = None;
         let (sizing, progress) = (m.opts.sizing.take(), m.opts.progress.take());
@@ -525,15 +548,9 @@ pub unsafe extern "C" fn idm_mesher3d_tetgen(
             code = 0;
             return Ok(());
         }
-        let mesh = if sw.plc {
-            tetrahedralize(&m.plc, &m.opts).map_err(&mut fail)?
-        } else {
-            let mut mesh = delaunay3d(&m.plc.points).map_err(&mut fail)?;
-            for (dst, &src) in mesh.vertex_markers.iter_mut().zip(&m.plc.point_markers) {
-                *dst = src;
-            }
-            mesh
-        };
+        let none = Extra::default();
+        let input = extra.as_ref().map_or(&none, |e| &e.input);
+        let (mesh, post) = mesh_for(&sw, &m.plc, m.opts.clone(), input).map_err(&mut fail)?;
         if sw.check {
             mesh.validate().map_err(|e| {
                 code = 2;
@@ -545,6 +562,9 @@ pub unsafe extern "C" fn idm_mesher3d_tetgen(
         }
         let (complete, steiner) = (mesh.complete, mesh.steiner_points);
         m.mesh = Some(mesh);
+        if let Some(e) = extra.as_mut() {
+            e.post = post;
+        }
         code = 0;
         if complete {
             Ok(())
@@ -574,11 +594,13 @@ pub unsafe extern "C" fn idm_mesher3d_tetgen(
 /// Writes the handle's mesh to the files TetGen's command line writes for `*sw`:
 /// `out_stem.node`, `.ele`, `.face` (unless `N`, `E`, `F`), `.edge` with `e`, `.neigh` with
 /// `n`, numbered from `base` (0 or 1). Face and edge markers are written when `plc` is
-/// nonzero, vertex markers when `node_markers` is, both unless `B`. "Writing ..." lines are
-/// printed unless `Q`.
+/// nonzero, vertex markers when `node_markers` is, both unless `B`. The `o2` nodes and point
+/// attributes that `idm_mesher3d_tetgen` left in `extra` (NULL: none) are written too.
+/// "Writing ..." lines are printed unless `Q`.
 ///
 /// # Safety
-/// `m` a live handle with a mesh; `out_stem` a NUL-terminated string; `sw` a switches struct.
+/// `m` a live handle with a mesh; `out_stem` a NUL-terminated string; `sw` a switches struct;
+/// `extra` NULL or a live `idm_tetgen_extra`.
 #[no_mangle]
 pub unsafe extern "C" fn idm_mesher3d_write_tetgen(
     m: *const idm_mesher3d,
@@ -587,6 +609,7 @@ pub unsafe extern "C" fn idm_mesher3d_write_tetgen(
     plc: i32,
     node_markers: i32,
     base: u32,
+    extra: *const idm_tetgen_extra,
 ) -> idm_status {
     guard(|| {
         // SAFETY (all blocks here): the caller's contract, checked as far as possible.
@@ -602,9 +625,425 @@ pub unsafe extern "C" fn idm_mesher3d_write_tetgen(
         if base > 1 {
             return Err(Failure::invalid(format!("base is {base}, must be 0 or 1")));
         }
-        write_outputs(&sw, stem, plc != 0, node_markers != 0, mesh, base)
+        let none = Post::default();
+        let post = unsafe { extra.as_ref() }.map_or(&none, |e| &e.post);
+        write_outputs(&sw, stem, plc != 0, node_markers != 0, mesh, post, base)
             .map_err(|e| Failure::new(idm_status::IDM_ERR_INVALID_INPUT, e))
     })
+}
+
+/// What TetGen's `r`, `i`, `m` and point attributes bring beyond the PLC of an
+/// `idm_mesher3d` (inputs), and what `idm_mesher3d_tetgen` outputs beside the mesh (`o2`
+/// nodes, point attributes). Create with `idm_tetgen_extra_new`, free with
+/// `idm_tetgen_extra_free`.
+#[derive(Default)]
+pub struct idm_tetgen_extra {
+    input: Extra,
+    post: Post,
+}
+
+/// Creates an empty `idm_tetgen_extra` in `*out`.
+///
+/// # Safety
+/// `out` valid for writing a pointer.
+#[no_mangle]
+pub unsafe extern "C" fn idm_tetgen_extra_new(out: *mut *mut idm_tetgen_extra) -> idm_status {
+    guard(|| {
+        check_out(out, "out")?;
+        // SAFETY: checked above.
+        unsafe { out.write(Box::into_raw(Box::default())) };
+        Ok(())
+    })
+}
+
+/// Frees an `idm_tetgen_extra`. NULL is a no-op.
+///
+/// # Safety
+/// `e` NULL or from `idm_tetgen_extra_new`, not freed before.
+#[no_mangle]
+pub unsafe extern "C" fn idm_tetgen_extra_free(e: *mut idm_tetgen_extra) {
+    if !e.is_null() {
+        // SAFETY: the caller's contract; dropping plain vectors cannot panic.
+        drop(unsafe { Box::from_raw(e) });
+    }
+}
+
+/// Reads `count` simplices of `corners` indices each (the first `K` used), numbered from
+/// `base`, as 0-based arrays.
+///
+/// # Safety
+/// `ptr` NULL (only with `count` 0) or valid for `count * corners` values.
+unsafe fn simplices<const K: usize>(
+    ptr: *const i32,
+    count: usize,
+    corners: usize,
+    base: u32,
+    what: &str,
+) -> Result<Vec<[u32; K]>, Failure> {
+    if corners < K {
+        return Err(Failure::invalid(format!(
+            "`{what}`: {corners} corners per item, at least {K} needed"
+        )));
+    }
+    // SAFETY: the caller's contract.
+    let flat = unsafe { input_slice(ptr, scaled(count, corners, what)?, what) }?;
+    flat.chunks_exact(corners)
+        .enumerate()
+        .map(|(i, c)| {
+            let mut out = [0u32; K];
+            for (o, &v) in out.iter_mut().zip(c) {
+                *o = u32::try_from(i64::from(v) - i64::from(base)).map_err(|_| {
+                    Failure::invalid(format!("`{what}`: item {i} has the index {v} below {base}"))
+                })?;
+            }
+            Ok(out)
+        })
+        .collect()
+}
+
+/// Gives the mesh to refine with `r` (TetGen's `tetrahedronlist`, `tetrahedronattributelist`,
+/// `tetrahedronvolumelist`, `trifacelist`, `trifacemarkerlist`), indices numbered from `base`
+/// into the handle's points: `num_tets` tetrahedra of `corners` nodes (the first 4 used),
+/// `num_attributes` attributes per tetrahedron (the first used; NULL with 0), one volume bound
+/// per tetrahedron or NULL, `num_faces` triangles with markers (NULL: 0). Replaces what was
+/// given before.
+///
+/// # Safety
+/// Every non-NULL pointer valid for the stated number of values.
+#[no_mangle]
+pub unsafe extern "C" fn idm_tetgen_extra_set_mesh(
+    e: *mut idm_tetgen_extra,
+    tets: *const i32,
+    num_tets: usize,
+    corners: usize,
+    attributes: *const f64,
+    num_attributes: usize,
+    volumes: *const f64,
+    faces: *const i32,
+    face_markers: *const i32,
+    num_faces: usize,
+    base: u32,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let e = unsafe { e.as_mut() }.ok_or_else(|| Failure::null("e"))?;
+        let tets = unsafe { simplices::<4>(tets, num_tets, corners, base, "tets") }?;
+        let attrs = unsafe {
+            input_slice(
+                attributes,
+                scaled(num_tets, num_attributes, "num_attributes")?,
+                "attributes",
+            )
+        }?;
+        let attributes = if num_attributes == 0 {
+            Vec::new()
+        } else {
+            attrs.iter().step_by(num_attributes).copied().collect()
+        };
+        let volumes = unsafe { optional_slice(volumes, num_tets, "volumes") }?
+            .map(<[f64]>::to_vec)
+            .unwrap_or_default();
+        let faces = unsafe { simplices::<3>(faces, num_faces, 3, base, "faces") }?;
+        let face_markers = unsafe { optional_slice(face_markers, num_faces, "face_markers") }?
+            .map(<[i32]>::to_vec)
+            .unwrap_or_default();
+        e.input.given = Some(GivenMesh {
+            tets,
+            attributes,
+            volumes,
+            faces,
+            face_markers,
+        });
+        Ok(())
+    })
+}
+
+/// Gives the points to insert with `i` (TetGen's `addin->pointlist`): `num_points` points of
+/// 3 doubles. Replaces what was given before.
+///
+/// # Safety
+/// `points` valid for `3 * num_points` doubles.
+#[no_mangle]
+pub unsafe extern "C" fn idm_tetgen_extra_set_addin(
+    e: *mut idm_tetgen_extra,
+    points: *const f64,
+    num_points: usize,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let e = unsafe { e.as_mut() }.ok_or_else(|| Failure::null("e"))?;
+        let p = unsafe { input_slice(points, scaled(num_points, 3, "num_points")?, "points") }?;
+        reject_nan_points(p)?;
+        e.input.addin = p.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        Ok(())
+    })
+}
+
+fn reject_nan_points(p: &[f64]) -> Result<(), Failure> {
+    match p.iter().position(|x| !x.is_finite()) {
+        Some(i) => Err(Failure::invalid(format!(
+            "point {} has a coordinate that is not finite",
+            i / 3
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// Gives the sizes for `m` (TetGen's `pointmtrlist` with `numberofpointmtrs` 1): a background
+/// mesh of `num_points` points (3 doubles each) with `sizes_per_point` values per point (only
+/// 1 is supported: an isotropic size; 0 or less means no bound there) and `num_tets`
+/// tetrahedra of `corners` nodes numbered from `base` (NULL with 0: the Delaunay
+/// tetrahedralization of the points, or with `r` the mesh being refined when the points are
+/// its points). Replaces what was given before.
+///
+/// # Safety
+/// Every non-NULL pointer valid for the stated number of values.
+#[no_mangle]
+pub unsafe extern "C" fn idm_tetgen_extra_set_metric(
+    e: *mut idm_tetgen_extra,
+    points: *const f64,
+    num_points: usize,
+    sizes: *const f64,
+    sizes_per_point: usize,
+    tets: *const i32,
+    num_tets: usize,
+    corners: usize,
+    base: u32,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let e = unsafe { e.as_mut() }.ok_or_else(|| Failure::null("e"))?;
+        if sizes_per_point != 1 {
+            return Err(Failure::new(
+                idm_status::IDM_ERR_UNSUPPORTED,
+                format!(
+                    "{sizes_per_point} metric values per point: only isotropic sizes (1 per \
+                     point) are supported"
+                ),
+            ));
+        }
+        let p = unsafe { input_slice(points, scaled(num_points, 3, "num_points")?, "points") }?;
+        reject_nan_points(p)?;
+        let s = unsafe { input_slice(sizes, num_points, "sizes") }?;
+        let tets = if num_tets == 0 {
+            Vec::new()
+        } else {
+            unsafe { simplices::<4>(tets, num_tets, corners, base, "tets") }?
+        };
+        e.input.metric = Some(Metric {
+            points: p.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
+            tets,
+            sizes: s.to_vec(),
+        });
+        Ok(())
+    })
+}
+
+/// Gives `num_attributes` attributes per input point (TetGen's `pointattributelist`) for
+/// `num_points` points: copied to the input points of the output and interpolated at the
+/// others (see `idm_tetgen_extra_output`). Replaces what was given before.
+///
+/// # Safety
+/// `attributes` valid for `num_points * num_attributes` doubles.
+#[no_mangle]
+pub unsafe extern "C" fn idm_tetgen_extra_set_point_attributes(
+    e: *mut idm_tetgen_extra,
+    attributes: *const f64,
+    num_points: usize,
+    num_attributes: usize,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let e = unsafe { e.as_mut() }.ok_or_else(|| Failure::null("e"))?;
+        let n = scaled(num_points, num_attributes, "num_attributes")?;
+        let a = unsafe { input_slice(attributes, n, "attributes") }?;
+        e.input.num_point_attributes = num_attributes;
+        e.input.point_attributes = a.to_vec();
+        Ok(())
+    })
+}
+
+/// What `idm_mesher3d_tetgen` output beside the mesh, lent until the next call on the
+/// `idm_tetgen_extra`. An empty array is NULL.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct idm_tetgen_extra_view {
+    /// Number of `o2` nodes (after the mesh's vertices); 0 without `o2`.
+    pub num_order2_nodes: usize,
+    /// 3 doubles per `o2` node.
+    pub order2_nodes: *const f64,
+    /// With `o2`: 10 nodes per tetrahedron (0-based; corners, then the nodes on the edges
+    /// (2,3), (0,3), (0,1), (1,2), (1,3), (0,2), TetGen 1.5's order); else NULL.
+    pub tets10: *const u32,
+    /// Attributes per output point; 0 when no point attributes were given.
+    pub num_point_attributes: usize,
+    /// `num_point_attributes` per output point (vertices, then `o2` nodes).
+    pub point_attributes: *const f64,
+}
+
+/// Lends what the last `idm_mesher3d_tetgen` call with `e` output beside the mesh.
+///
+/// # Safety
+/// `e` a live `idm_tetgen_extra`; `out` valid for writing the struct.
+#[no_mangle]
+pub unsafe extern "C" fn idm_tetgen_extra_output(
+    e: *const idm_tetgen_extra,
+    out: *mut idm_tetgen_extra_view,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let e = unsafe { e.as_ref() }.ok_or_else(|| Failure::null("e"))?;
+        check_out(out, "out")?;
+        let (nodes, tets): (&[[f64; 3]], &[[u32; 10]]) = match &e.post.order2 {
+            Some((n, t)) => (n, t),
+            None => (&[], &[]),
+        };
+        let view = idm_tetgen_extra_view {
+            num_order2_nodes: nodes.len(),
+            order2_nodes: array_ptr(nodes),
+            tets10: array_ptr(tets),
+            num_point_attributes: e.post.num_point_attributes,
+            point_attributes: array_ptr(&e.post.point_attributes),
+        };
+        unsafe { out.write(view) };
+        Ok(())
+    })
+}
+
+/// Items read from a TetGen mesh file by `idm_tetgen_read_items`. Free with
+/// `idm_tetgen_items_free`.
+#[derive(Default)]
+pub struct idm_tetgen_items {
+    per_item: usize,
+    num_attributes: usize,
+    indices: Vec<i32>,
+    attributes: Vec<f64>,
+    markers: Vec<i32>,
+    values: Vec<f64>,
+}
+
+/// The arrays of an `idm_tetgen_items`, lent until `idm_tetgen_items_free`. An empty array
+/// is NULL.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct idm_tetgen_items_view {
+    /// Number of items (tetrahedra, faces, volume bounds or sizes).
+    pub count: usize,
+    /// Indices per item: 4 for `.ele` (the corners of 10-node files too), 3 for `.face`, 0
+    /// for `.vol` and `.mtr`.
+    pub per_item: usize,
+    /// The indices, numbered from the `base` given to `idm_tetgen_read_items`.
+    pub indices: *const i32,
+    /// Attributes per item (`.ele`).
+    pub num_attributes: usize,
+    /// `num_attributes` per item.
+    pub attributes: *const f64,
+    /// One marker per item (`.face` with markers), else NULL.
+    pub markers: *const i32,
+    /// One value per item (`.vol`: maximum volume; `.mtr`: size), else NULL.
+    pub values: *const f64,
+}
+
+/// Reads a TetGen mesh file with idmesh's readers: `kind` 0 an `.ele` file, 1 a `.face`
+/// file, 2 a `.vol` file (`num_tets` lines), 3 an `.mtr` file (`num_points` lines, one size
+/// each); indices refer to `num_points` points numbered from `base` (0 or 1). Errors name the
+/// file and line.
+///
+/// # Safety
+/// `path` a NUL-terminated string; `out` valid for writing a pointer.
+#[no_mangle]
+pub unsafe extern "C" fn idm_tetgen_read_items(
+    path: *const c_char,
+    kind: i32,
+    num_points: usize,
+    num_tets: usize,
+    base: u32,
+    out: *mut *mut idm_tetgen_items,
+) -> idm_status {
+    use crate::io::tetgen::{parse_ele, parse_face, parse_mtr, parse_vol};
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let path = unsafe { c_str(path, "path") }?;
+        check_out(out, "out")?;
+        if base > 1 {
+            return Err(Failure::invalid(format!("base is {base}, must be 0 or 1")));
+        }
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            Failure::new(
+                idm_status::IDM_ERR_INVALID_INPUT,
+                format!("cannot read {path}: {e}"),
+            )
+        })?;
+        let bad = |e: crate::io::ParseError| {
+            Failure::new(idm_status::IDM_ERR_INVALID_INPUT, e.to_string())
+        };
+        let shift = |v: u32| v as i32 + base as i32;
+        let mut items = idm_tetgen_items::default();
+        match kind {
+            0 => {
+                let e = parse_ele(&text, path, base, num_points).map_err(bad)?;
+                items.per_item = 4;
+                items.indices = e.tets.iter().flatten().map(|&v| shift(v)).collect();
+                items.num_attributes = e.num_attributes;
+                items.attributes = e.attributes;
+            }
+            1 => {
+                let f = parse_face(&text, path, base, num_points).map_err(bad)?;
+                items.per_item = 3;
+                items.indices = f.items.iter().flatten().map(|&v| shift(v)).collect();
+                items.markers = f.markers;
+            }
+            2 => items.values = parse_vol(&text, path, num_tets).map_err(bad)?,
+            3 => items.values = parse_mtr(&text, path, num_points).map_err(bad)?,
+            k => return Err(Failure::invalid(format!("kind {k} is not 0, 1, 2 or 3"))),
+        }
+        unsafe { out.write(Box::into_raw(Box::new(items))) };
+        Ok(())
+    })
+}
+
+/// Lends the arrays of `p` in `*out`.
+///
+/// # Safety
+/// `p` a live `idm_tetgen_items`; `out` valid for writing the struct.
+#[no_mangle]
+pub unsafe extern "C" fn idm_tetgen_items_arrays(
+    p: *const idm_tetgen_items,
+    out: *mut idm_tetgen_items_view,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let p = unsafe { p.as_ref() }.ok_or_else(|| Failure::null("p"))?;
+        check_out(out, "out")?;
+        let count = p
+            .indices
+            .len()
+            .checked_div(p.per_item)
+            .unwrap_or(p.values.len());
+        let view = idm_tetgen_items_view {
+            count,
+            per_item: p.per_item,
+            indices: array_ptr(&p.indices),
+            num_attributes: p.num_attributes,
+            attributes: array_ptr(&p.attributes),
+            markers: array_ptr(&p.markers),
+            values: array_ptr(&p.values),
+        };
+        unsafe { out.write(view) };
+        Ok(())
+    })
+}
+
+/// Frees an `idm_tetgen_items`. NULL is a no-op.
+///
+/// # Safety
+/// `p` NULL or from `idm_tetgen_read_items`, not freed before.
+#[no_mangle]
+pub unsafe extern "C" fn idm_tetgen_items_free(p: *mut idm_tetgen_items) {
+    if !p.is_null() {
+        // SAFETY: the caller's contract; dropping plain vectors cannot panic.
+        drop(unsafe { Box::from_raw(p) });
+    }
 }
 
 #[cfg(test)]
@@ -651,9 +1090,9 @@ mod tests {
             panic!("to_switches failed")
         };
         assert_eq!(idm_tetgen_switches::from(&back), s);
-        let (st, msg) = parse("pqr").unwrap_err();
+        let (st, msg) = parse("pqc").unwrap_err();
         assert_eq!(st, idm_status::IDM_ERR_UNSUPPORTED);
-        assert!(msg.contains("-r"), "{msg}");
+        assert!(msg.contains("-c"), "{msg}");
         let (st, msg) = parse("pq#").unwrap_err();
         assert_eq!(st, idm_status::IDM_ERR_INVALID_ARGUMENT);
         assert!(msg.contains("-#"), "{msg}");
@@ -714,7 +1153,7 @@ mod tests {
         // SAFETY: live handle and valid pointers.
         unsafe {
             assert_eq!(
-                idm_mesher3d_tetgen(m, &sw, 0, &mut code),
+                idm_mesher3d_tetgen(m, &sw, 0, null_mut(), &mut code),
                 idm_status::IDM_OK
             );
             assert_eq!(code, 0);
@@ -731,7 +1170,7 @@ mod tests {
             let off = [0usize, 3];
             let st = idm_mesher3d_add_facet(m, tri.as_ptr(), off.as_ptr(), 1, null(), 0, 9);
             assert_eq!(st, idm_status::IDM_OK);
-            let st = idm_mesher3d_tetgen(m, &sw, 0, &mut code);
+            let st = idm_mesher3d_tetgen(m, &sw, 0, null_mut(), &mut code);
             assert_eq!(st, idm_status::IDM_ERR_INVALID_INPUT);
             assert_eq!(code, 3, "{}", last_error());
             idm_mesher3d_free(m);
@@ -799,6 +1238,64 @@ mod tests {
                 idm_status::IDM_ERR_INVALID_INPUT
             );
             assert!(last_error().contains("none.poly"), "{}", last_error());
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn mesh_files_are_read_as_items() {
+        let dir = std::env::temp_dir().join(format!("idmesh-ffi-items-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = |name: &str, text: &str| {
+            let p = dir.join(name);
+            std::fs::write(&p, text).unwrap();
+            CString::new(p.to_str().unwrap()).unwrap()
+        };
+        let ele = file("m.ele", "1 10 1\n1 1 2 3 4 5 5 5 5 5 5 7.5\n");
+        let vol = file("m.vol", "1\n1 0.25\n");
+        let mtr = file("m.mtr", "5 1\n0.1\n0.2\n0.3\n0.4\n0.5\n");
+        let face = file("m.face", "1 1\n1 1 2 3 9\n");
+        let mut p = null_mut();
+        let mut v = std::mem::MaybeUninit::uninit();
+        // SAFETY: valid strings and out-pointers; the items are freed once.
+        unsafe {
+            assert_eq!(
+                idm_tetgen_read_items(ele.as_ptr(), 0, 5, 0, 1, &mut p),
+                idm_status::IDM_OK
+            );
+            assert_eq!(
+                idm_tetgen_items_arrays(p, v.as_mut_ptr()),
+                idm_status::IDM_OK
+            );
+            let w = v.assume_init();
+            assert_eq!((w.count, w.per_item, w.num_attributes), (1, 4, 1));
+            assert_eq!(std::slice::from_raw_parts(w.indices, 4), &[1, 2, 3, 4]);
+            assert_eq!(*w.attributes, 7.5);
+            idm_tetgen_items_free(p);
+            for (path, kind, value) in [(&vol, 2, 0.25), (&mtr, 3, 0.1)] {
+                let st = idm_tetgen_read_items(path.as_ptr(), kind, 5, 1, 1, &mut p);
+                assert_eq!(st, idm_status::IDM_OK, "{}", last_error());
+                assert_eq!(
+                    idm_tetgen_items_arrays(p, v.as_mut_ptr()),
+                    idm_status::IDM_OK
+                );
+                let w = v.assume_init();
+                assert_eq!((w.per_item, *w.values), (0, value));
+                idm_tetgen_items_free(p);
+            }
+            let st = idm_tetgen_read_items(face.as_ptr(), 1, 5, 0, 1, &mut p);
+            assert_eq!(st, idm_status::IDM_OK);
+            assert_eq!(
+                idm_tetgen_items_arrays(p, v.as_mut_ptr()),
+                idm_status::IDM_OK
+            );
+            assert_eq!(*v.assume_init().markers, 9);
+            idm_tetgen_items_free(p);
+            // Wrong counts are errors naming the file.
+            let st = idm_tetgen_read_items(vol.as_ptr(), 2, 5, 3, 1, &mut p);
+            assert_eq!(st, idm_status::IDM_ERR_INVALID_INPUT);
+            assert!(last_error().contains("m.vol"), "{}", last_error());
+            idm_tetgen_items_free(null_mut());
         }
         std::fs::remove_dir_all(&dir).unwrap();
     }

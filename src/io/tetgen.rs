@@ -8,7 +8,7 @@
 //! [`parse_face`], [`parse_edge`] and [`parse_neigh`] read a mesh back.
 //!
 //! Writing: [`write_node`], [`write_ele`], [`write_face`] (or [`write_all_faces`] for `-f`),
-//! [`write_edge`] and [`write_neigh`] write a [`TetMesh`](crate::TetMesh) in TetGen's output
+//! [`write_edge`] (or [`write_all_edges`] for `-e`) and [`write_neigh`] write a [`TetMesh`](crate::TetMesh) in TetGen's output
 //! layouts; [`write_plc_poly`] writes a PLC back as a self-contained `.poly` file.
 //!
 //! ```
@@ -32,11 +32,12 @@ pub use super::surface_read::{
 };
 pub use super::tetgen_input::TetgenInput;
 pub use super::tetgen_read::{
-    parse_edge, parse_ele, parse_face, parse_neigh, parse_node, parse_poly, parse_smesh, read_node,
-    read_poly, read_smesh, EleData3, Simplices,
+    parse_edge, parse_ele, parse_face, parse_mtr, parse_neigh, parse_node, parse_poly, parse_smesh,
+    parse_vol, read_node, read_poly, read_smesh, EleData3, Simplices,
 };
 pub use super::tetgen_write::{
-    write_all_faces, write_edge, write_ele, write_face, write_neigh, write_node, write_plc_poly,
+    all_edges, write_all_edges, write_all_faces, write_edge, write_ele, write_ele_with, write_face,
+    write_neigh, write_node, write_node_with, write_plc_poly,
 };
 
 /// Reads any input file TetGen reads, chosen by extension: `.node`, `.poly`, `.smesh`,

@@ -408,7 +408,8 @@ fn read_polygon<'a>(
 }
 
 /// Parses an `.ele` file whose vertices are numbered from `base` and number `num_vertices`.
-/// Only 4-node tetrahedra are accepted.
+/// 4-node and 10-node (TetGen's `-o2`) tetrahedra are accepted; of the latter only the four
+/// corners are read.
 pub fn parse_ele(
     text: &str,
     file: &str,
@@ -422,13 +423,15 @@ pub fn parse_ele(
     })?;
     rec.at_most(3, "the .ele header")?;
     let nt = rec.count(0, "tetrahedron count")?;
-    if let Some(k) = rec.opt_int(1, "nodes per tetrahedron")? {
-        if k != 4 {
+    let nodes = match rec.opt_int(1, "nodes per tetrahedron")? {
+        None | Some(4) => 4,
+        Some(10) => 10,
+        Some(k) => {
             return Err(rec.error(format!(
-                "only 4 nodes per tetrahedron are supported, got {k}"
-            )));
+                "only 4 or 10 nodes per tetrahedron are supported, got {k}"
+            )))
         }
-    }
+    };
     let na = match rec.get(2) {
         Some(_) => rec.count(2, "attribute count")?,
         None => 0,
@@ -444,8 +447,12 @@ pub fn parse_ele(
             *slot = index(&rec, v, base, num_vertices, "corner")?;
         }
         tets.push(tet);
+        for c in 4..nodes {
+            let v = rec.int(1 + c, "node")?;
+            index(&rec, v, base, num_vertices, "node")?;
+        }
         for a in 0..na {
-            attributes.push(rec.f64(5 + a, "attribute")?);
+            attributes.push(rec.f64(1 + nodes + a, "attribute")?);
         }
     }
     expect_end(&mut recs, &mut rec, "the tetrahedra declared in the header")?;
@@ -551,6 +558,56 @@ pub fn parse_neigh(
         out.push(row);
     }
     expect_end(&mut recs, &mut rec, "the tetrahedra declared in the header")?;
+    Ok(out)
+}
+
+/// Parses a `.vol` file (TetGen's volume bounds for `-ra`): `<#tetrahedra>`, then
+/// `<#> <maximum volume>` per tetrahedron (-1 or 0: no bound). It must have `num_tets` lines.
+pub fn parse_vol(text: &str, file: &str, num_tets: usize) -> Result<Vec<f64>, ParseError> {
+    let mut recs = Records::new(text, file);
+    let mut rec = recs.record();
+    recs.require(&mut rec, || "the header line '<#tetrahedra>'".into())?;
+    rec.at_most(1, "the .vol header")?;
+    let n = rec.count(0, "tetrahedron count")?;
+    if n != num_tets {
+        return Err(rec.error(format!("{n} volume bounds for {num_tets} tetrahedra")));
+    }
+    let mut out = Vec::with_capacity(capacity(n, text));
+    for k in 0..n {
+        recs.require(&mut rec, || format!("tetrahedron {} of {n}", k + 1))?;
+        rec.at_most(2, "a .vol line")?;
+        out.push(rec.f64(1, "maximum volume")?);
+    }
+    expect_end(&mut recs, &mut rec, "the tetrahedra declared in the header")?;
+    Ok(out)
+}
+
+/// Parses an `.mtr` file (TetGen's sizes at points for `-m`): `<#points> <#values per
+/// point>`, then one line of values per point. Only one value per point (an isotropic size)
+/// is supported. It must have `num_points` lines.
+pub fn parse_mtr(text: &str, file: &str, num_points: usize) -> Result<Vec<f64>, ParseError> {
+    let mut recs = Records::new(text, file);
+    let mut rec = recs.record();
+    recs.require(&mut rec, || "the header line '<#points> 1'".into())?;
+    rec.at_most(2, "the .mtr header")?;
+    let n = rec.count(0, "point count")?;
+    if n != num_points {
+        return Err(rec.error(format!("{n} sizes for {num_points} points")));
+    }
+    if let Some(k) = rec.opt_int(1, "values per point")? {
+        if k != 1 {
+            return Err(rec.error(format!(
+                "{k} values per point: only isotropic sizes (1 per point) are supported"
+            )));
+        }
+    }
+    let mut out = Vec::with_capacity(capacity(n, text));
+    for k in 0..n {
+        recs.require(&mut rec, || format!("point {} of {n}", k + 1))?;
+        rec.at_most(1, "an .mtr line")?;
+        out.push(rec.f64(0, "size")?);
+    }
+    expect_end(&mut recs, &mut rec, "the points declared in the header")?;
     Ok(out)
 }
 

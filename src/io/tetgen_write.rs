@@ -29,6 +29,20 @@ fn check_len(what: &str, got: usize, expected: usize) -> io::Result<()> {
 /// Writes the `.node` file of `mesh`: header `n 3 0 m`, then `i x y z [marker]` per vertex
 /// (markers when `markers` is set, as TetGen does when the input had point markers).
 pub fn write_node<W: Write>(out: W, mesh: &TetMesh, base: u32, markers: bool) -> io::Result<()> {
+    write_node_with(out, mesh, &[], 0, &[], base, markers)
+}
+
+/// [`write_node`] with `extra` points after the mesh's vertices (TetGen's `-o2` nodes, marker
+/// 0) and `na` attributes per point (`attributes` covers every point written).
+pub fn write_node_with<W: Write>(
+    out: W,
+    mesh: &TetMesh,
+    extra: &[[f64; 3]],
+    na: usize,
+    attributes: &[f64],
+    base: u32,
+    markers: bool,
+) -> io::Result<()> {
     if markers {
         check_len(
             "vertex marker",
@@ -36,17 +50,22 @@ pub fn write_node<W: Write>(out: W, mesh: &TetMesh, base: u32, markers: bool) ->
             mesh.vertices.len(),
         )?;
     }
+    let n = mesh.vertices.len() + extra.len();
+    check_len("point attribute", attributes.len(), n * na)?;
     let mut w = Out::new(out);
-    w.uint(mesh.vertices.len() as u64)
+    w.uint(n as u64)
         .uint(3)
-        .uint(0)
+        .uint(na as u64)
         .uint(markers as u64)
         .end_line()?;
     let b = base as u64;
-    for (i, p) in mesh.vertices.iter().enumerate() {
+    for (i, p) in mesh.vertices.iter().chain(extra).enumerate() {
         w.uint(i as u64 + b).real(p[0]).real(p[1]).real(p[2]);
+        for a in &attributes[i * na..(i + 1) * na] {
+            w.real(*a);
+        }
         if markers {
-            w.int(mesh.vertex_markers[i] as i64);
+            w.int(mesh.vertex_markers.get(i).copied().unwrap_or(0) as i64);
         }
         w.end_line()?;
     }
@@ -57,23 +76,39 @@ pub fn write_node<W: Write>(out: W, mesh: &TetMesh, base: u32, markers: bool) ->
 /// attributes, else 0), then `i v0 v1 v2 v3 [attribute]` per tetrahedron, positively
 /// oriented as in TetGen.
 pub fn write_ele<W: Write>(out: W, mesh: &TetMesh, base: u32) -> io::Result<()> {
+    let corners: Vec<&[u32]> = mesh.tets.iter().map(|t| &t[..]).collect();
+    write_ele_with(out, mesh, &corners, base)
+}
+
+/// [`write_ele`] with the node lists `corners` (one per tetrahedron, e.g. 10 nodes for
+/// TetGen's `-o2`), all of the same length.
+pub fn write_ele_with<W: Write>(
+    out: W,
+    mesh: &TetMesh,
+    corners: &[&[u32]],
+    base: u32,
+) -> io::Result<()> {
     let nt = mesh.tets.len();
+    check_len("tetrahedron", corners.len(), nt)?;
+    let k = corners.first().map_or(4, |c| c.len());
+    if corners.iter().any(|c| c.len() != k) {
+        return Err(invalid("tetrahedra with different node counts".into()));
+    }
     let with_attr = !mesh.tet_attributes.is_empty();
     if with_attr {
         check_len("tetrahedron attribute", mesh.tet_attributes.len(), nt)?;
     }
     let mut w = Out::new(out);
     w.uint(nt as u64)
-        .uint(4)
+        .uint(k as u64)
         .uint(with_attr as u64)
         .end_line()?;
     let b = base as u64;
-    for (i, t) in mesh.tets.iter().enumerate() {
-        w.uint(i as u64 + b)
-            .uint(t[0] as u64 + b)
-            .uint(t[1] as u64 + b)
-            .uint(t[2] as u64 + b)
-            .uint(t[3] as u64 + b);
+    for (i, t) in corners.iter().enumerate() {
+        w.uint(i as u64 + b);
+        for v in t.iter() {
+            w.uint(*v as u64 + b);
+        }
         if with_attr {
             w.real(mesh.tet_attributes[i]);
         }
@@ -177,6 +212,49 @@ pub fn write_edge<W: Write>(out: W, mesh: &TetMesh, base: u32, markers: bool) ->
         None
     };
     write_simplices(out, &mesh.edges, m, base)
+}
+
+/// Every edge of the tetrahedralization once, in tetrahedron order (corner pairs (0,1),
+/// (1,2), (2,0), (0,3), (1,3), (2,3), as the TetGen compatibility layer lists them), with its
+/// marker: the subsegment's, 0 for other edges. TetGen's `-e` writes these.
+pub fn all_edges(mesh: &TetMesh) -> (Vec<[u32; 2]>, Vec<i32>) {
+    let key = |a: u32, b: u32| ((a.min(b) as u64) << 32) | a.max(b) as u64;
+    let marker_of: HashMap<u64, i32> = mesh
+        .edges
+        .iter()
+        .zip(
+            mesh.edge_markers
+                .iter()
+                .copied()
+                .chain(std::iter::repeat(0)),
+        )
+        .map(|(e, m)| (key(e[0], e[1]), m))
+        .collect();
+    let mut seen = std::collections::HashSet::with_capacity(mesh.vertices.len() * 7);
+    let mut edges = Vec::new();
+    let mut markers = Vec::new();
+    for t in &mesh.tets {
+        for (i, j) in [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)] {
+            let k = key(t[i], t[j]);
+            if seen.insert(k) {
+                edges.push([t[i], t[j]]);
+                markers.push(marker_of.get(&k).copied().unwrap_or(0));
+            }
+        }
+    }
+    (edges, markers)
+}
+
+/// Writes every edge of `mesh` ([`all_edges`]), TetGen's `-e`: header `n m`, then
+/// `i a b [marker]`.
+pub fn write_all_edges<W: Write>(
+    out: W,
+    mesh: &TetMesh,
+    base: u32,
+    markers: bool,
+) -> io::Result<()> {
+    let (edges, m) = all_edges(mesh);
+    write_simplices(out, &edges, markers.then_some(m.as_slice()), base)
 }
 
 /// Writes the `.neigh` file of `mesh`: header `n 4`, then `i n0 n1 n2 n3` where `nk` is the

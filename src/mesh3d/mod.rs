@@ -17,7 +17,7 @@ mod order;
 mod output;
 mod plc;
 #[cfg(test)]
-mod plc_tests;
+pub(crate) mod plc_tests;
 pub mod store;
 pub mod surface;
 mod validate;

@@ -4,6 +4,7 @@
 //! compatibility layer's `tetrahedralize("pq1.4", ...)`, Triangle's `triangulate("pq30", ...)`).
 
 pub mod tetgen;
+pub mod tetgen_extra;
 pub mod triangle;
 
 /// `box` -> `box.1`, `box.1` -> `box.2`, `dir.v2/box` -> `dir.v2/box.1`. Only the last path

@@ -14,10 +14,11 @@ use std::fs::File;
 use std::io::{self, Write};
 use std::path::Path;
 
+use super::tetgen_extra::Post;
 use crate::error::InputError;
 use crate::io::exchange::{self, Format, MeshView};
 use crate::io::tetgen::{
-    write_all_faces, write_edge, write_ele, write_face, write_neigh, write_node,
+    write_all_edges, write_all_faces, write_ele_with, write_face, write_neigh, write_node_with,
 };
 use crate::mesh3d::{Options3, TetMesh};
 
@@ -72,6 +73,16 @@ pub struct TetSwitches {
     pub quiet: bool,
     /// `V`: print statistics.
     pub verbose: bool,
+    /// `r`: refine the given mesh (`.node` + `.ele`, with `.face` and `.vol` when present; see
+    /// [`super::tetgen_extra`] for what is done).
+    pub refine: bool,
+    /// `i`: insert the points of `FILE.a.node` (the library's `addin`).
+    pub insert_points: bool,
+    /// `m`: sizes at points (`FILE.mtr`, or the background mesh `FILE.b.*`; the library's
+    /// `pointmtrlist` of `in` or `bgmin`).
+    pub metric: bool,
+    /// `o2`: second-order (10-node) tetrahedra.
+    pub order2: bool,
     /// `k` (VTK), `g` (Medit), and on the command line `--format NAME`: further output files
     /// in these exchange formats.
     pub formats: Vec<Format>,
@@ -95,15 +106,10 @@ pub enum Parsed {
 fn unsupported(c: char) -> Option<&'static str> {
     Some(match c {
         'c' => "retaining the convex hull of the PLC",
-        'r' => "refining a previous mesh",
-        'i' => "inserting additional points",
-        'm' => "a mesh sizing function (use the library's SizingFn3)",
         'T' => "a coplanarity tolerance (idmesh decides coplanarity exactly)",
-        'X' => "disabling exact arithmetic",
         'w' => "weighted Delaunay triangulations",
         'R' => "reversing tetrahedron orientation",
         'O' => "non-Delaunay mesh optimization; -q removes slivers keeping the mesh Delaunay",
-        'o' => "second-order tetrahedra",
         's' => "piecewise smooth complexes",
         'l' | 'L' | 'b' => "choosing the insertion algorithm",
         'v' => "Voronoi diagram output",
@@ -230,7 +236,35 @@ pub fn parse_group(arg: &str, sw: &mut TetSwitches) -> Result<(), String> {
                     j += 1;
                 }
             }
-            'J' => {}
+            // idmesh decides every geometric question exactly; TetGen's X only turns its own
+            // exact arithmetic off, so there is nothing to change.
+            'J' | 'X' => {}
+            'r' => sw.refine = true,
+            'i' => sw.insert_points = true,
+            'm' => sw.metric = true,
+            'o' => match chars.get(j + 1) {
+                Some('2') => {
+                    sw.order2 = true;
+                    j += 1;
+                }
+                Some('1') => {
+                    sw.order2 = false;
+                    j += 1;
+                }
+                Some('/') => {
+                    return Err(format!(
+                        "-o/<angle> (the maximum dihedral angle for TetGen's mesh optimization) \
+                         is not supported: idmesh does not optimize by flips and smoothing (in \
+                         '{arg}')"
+                    ))
+                }
+                Some(c) if c.is_ascii_digit() => {
+                    return Err(format!(
+                        "-o{c}: only -o2 (second-order tetrahedra) is supported (in '{arg}')"
+                    ))
+                }
+                _ => {}
+            },
             'h' | 'H' | '?' => {
                 return Err(format!(
                     "-{} inside a switch group; use 'idmesh tetgen --help'",
@@ -269,12 +303,12 @@ pub fn format_option(name: &str) -> Result<Format, String> {
 }
 
 /// Applies the implications as TetGen applies them: `a<volume>` turns on `q`; `q` and `d` turn
-/// on `p`.
+/// on `p`, unless `r` (a mesh is read, not a PLC).
 pub fn finish(sw: &mut TetSwitches) {
     if sw.max_volume.is_some() && sw.radius_edge.is_none() {
         sw.radius_edge = Some(2.0);
     }
-    if sw.radius_edge.is_some() || sw.detect {
+    if (sw.radius_edge.is_some() || sw.detect) && !sw.refine {
         sw.plc = true;
     }
 }
@@ -427,28 +461,45 @@ fn write_file(
 }
 
 /// Writes the output files TetGen's command line writes for these switches: `STEM.node`,
-/// `.ele`, `.face` (unless `-N`, `-E`, `-F`), `.edge` with `-e`, `.neigh` with `-n`, and
-/// `.vtk` (`-k`), `.mesh` (`-g`) or any `--format`. As in
+/// `.ele`, `.face` (unless `-N`, `-E`, `-F`), `.edge` with `-e` (every edge, as TetGen),
+/// `.neigh` with `-n`, and `.vtk` (`-k`), `.mesh` (`-g`) or any `--format`. As in
 /// TetGen, vertex markers are written when the input had them (`node_markers`) and face and
-/// edge markers for PLC input, both unless `-B`.
+/// edge markers for PLC input, both unless `-B`. `post` adds the `-o2` nodes (after the
+/// vertices in `.node`, 10 nodes per line in `.ele`) and point attributes.
 pub fn write_outputs(
     sw: &TetSwitches,
     out_stem: &str,
     plc: bool,
     node_markers: bool,
     mesh: &TetMesh,
+    post: &Post,
     base: u32,
 ) -> Result<(), String> {
     let node_markers = !sw.no_markers && node_markers;
     let markers = !sw.no_markers && plc;
     let name = |ext: &str| format!("{out_stem}.{ext}");
     if !sw.no_node {
+        let extra = post.order2.as_ref().map_or(&[][..], |(p, _)| p.as_slice());
         write_file(sw, &name("node"), |f| {
-            write_node(f, mesh, base, node_markers)
+            write_node_with(
+                f,
+                mesh,
+                extra,
+                post.num_point_attributes,
+                &post.point_attributes,
+                base,
+                node_markers,
+            )
         })?;
     }
     if !sw.no_ele {
-        write_file(sw, &name("ele"), |f| write_ele(f, mesh, base))?;
+        let corners: Vec<&[u32]> = match &post.order2 {
+            Some((_, t10)) => t10.iter().map(|t| &t[..]).collect(),
+            None => mesh.tets.iter().map(|t| &t[..]).collect(),
+        };
+        write_file(sw, &name("ele"), |f| {
+            write_ele_with(f, mesh, &corners, base)
+        })?;
     }
     if !sw.no_face {
         write_file(sw, &name("face"), |f| {
@@ -460,7 +511,9 @@ pub fn write_outputs(
         })?;
     }
     if sw.edges {
-        write_file(sw, &name("edge"), |f| write_edge(f, mesh, base, markers))?;
+        write_file(sw, &name("edge"), |f| {
+            write_all_edges(f, mesh, base, markers)
+        })?;
     }
     if sw.neighbors {
         write_file(sw, &name("neigh"), |f| write_neigh(f, mesh, base))?;
@@ -736,5 +789,39 @@ mod tests {
             renumber(&InputError::TooFewPoints3 { count: 2 }, 1),
             InputError::TooFewPoints3 { count: 2 }
         );
+    }
+
+    #[test]
+    fn refine_insert_metric_order2_and_x_are_parsed() {
+        let (s, _) = run(&["-rq1.3aimo2X", "box.1"]).unwrap();
+        assert!(s.refine && s.insert_points && s.metric && s.order2 && s.region_volume);
+        assert!(!s.plc, "-r reads a mesh: q does not imply p");
+        assert_eq!(s.radius_edge, Some(1.3));
+        let (s, _) = run(&["-pq", "x"]).unwrap();
+        assert!(!s.refine && !s.insert_points && !s.metric && !s.order2);
+        let (s, _) = run(&["-po1", "x"]).unwrap();
+        assert!(!s.order2, "-o1 is first order");
+        let e = run(&["-po3", "x"]).unwrap_err();
+        assert!(e.contains("-o3") && e.contains("o2"), "{e}");
+        let e = run(&["-po/150", "x"]).unwrap_err();
+        assert!(e.contains("-o/") && e.contains("not supported"), "{e}");
+        // o2 followed by other letters.
+        let (s, _) = run(&["-po2e", "x"]).unwrap();
+        assert!(s.order2 && s.edges);
+        let s = parse_string("pq1.414o2").unwrap();
+        assert!(s.order2 && s.plc);
+    }
+
+    #[test]
+    fn r_reads_the_node_file_of_a_previous_mesh() {
+        let sw = TetSwitches {
+            refine: true,
+            radius_edge: Some(1.5),
+            ..TetSwitches::default()
+        };
+        let f = resolve("/nonexistent-idmesh/box.1", &sw);
+        assert_eq!(f.input, "/nonexistent-idmesh/box.1.node");
+        assert_eq!(f.out_stem, "/nonexistent-idmesh/box.2");
+        assert!(!f.plc);
     }
 }

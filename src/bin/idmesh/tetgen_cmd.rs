@@ -10,7 +10,8 @@ use idmesh::progress::observe;
 use idmesh::mesh3d::repair_surface;
 use idmesh::switches::tetgen::{self as tetgen_switches, renumber, resolve, say, write_outputs};
 use idmesh::switches::tetgen::{Parsed, TetSwitches};
-use idmesh::{delaunay3d, tetrahedralize, Error, Plc, TetMesh};
+use idmesh::switches::tetgen_extra::{mesh_for, read_extra};
+use idmesh::{Error, Plc, TetMesh};
 
 use crate::progress_ui::{catch_interrupt, check_interrupt, Outputs, Progress};
 
@@ -44,7 +45,7 @@ Switches are letters that may be grouped, e.g. -pq1.414a0.1V:
               tets whose circumcenter would encroach the surface are left as they are
   -z          number output items from 0
   -f          write every face to the .face file, not only the boundary and facet faces
-  -e          write the subsegments to an .edge file
+  -e          write every edge to an .edge file (marker: the subsegment's, else 0)
   -n          write a .neigh file
   -N -E -F    do not write the .node / .ele / .face file
   -B          leave boundary markers out of the output
@@ -59,12 +60,21 @@ Switches are letters that may be grouped, e.g. -pq1.414a0.1V:
               vertices of surface files are merged all the same, as in TetGen
   -k, -g      also write FILE.1.vtk (legacy VTK) / FILE.1.mesh (Medit), as TetGen does
   --format F  also write FILE.1.F: vtk, vtu (VTK XML), msh (Gmsh 4.1) or mesh (Medit)
-  -D -J       accepted: idmesh output is always conforming Delaunay and never drops unused
-              vertices
+  -r          refine FILE.node + FILE.ele (+ FILE.face, FILE.vol with -a): the mesh's boundary
+              and the faces between its regions (attributes, .vol bounds) are remeshed to the
+              -q/-a bounds with every given point kept at its index (not refined in place)
+  -i          also insert the points of FILE.a.node
+  -m          sizes at points: FILE.mtr (one size per input point), or FILE.b.node +
+              FILE.b.ele + FILE.b.mtr (a background mesh); interpolated linearly, a tet is
+              split while its longest edge exceeds the size at its centroid
+  -o2         10-node tetrahedra: edge midpoints after the vertices in .node, TetGen 1.5's
+              node order in .ele
+  Point attributes of the input are written, interpolated linearly at Steiner points.
+  -D -J -X    accepted: idmesh output is always conforming Delaunay, never drops unused
+              vertices, and its arithmetic is always exact
 Numbers after q take digits and dots; after a and S also exponents, exactly as in TetGen
 (so -a0.1e reads the volume 0.1e: put e first, -pea0.1).
-Not supported: -c, -r, -i, -m, -T, -O, -o2 and the viewer
-outputs; they are errors, never ignored.
+Not supported: -c, -T, -O, -o/ANGLE and the viewer outputs; they are errors, never ignored.
 ";
 
 /// Runs `idmesh tetgen ARGS`.
@@ -117,23 +127,19 @@ fn run(sw: &TetSwitches, file: &str) -> Result<(), String> {
         return Ok(());
     }
 
+    let extra = read_extra(sw, &files.input, &input)?;
     let mesh_start = Instant::now();
-    let mesh = if files.plc {
-        let mut opts = sw.options();
-        opts.progress = Some(progress.callback());
-        tetrahedralize(plc, &opts)
-    } else {
-        // A point set has no features to pass markers on: the input's markers are copied.
-        let f = progress.callback();
-        observe(Some(&f), || delaunay3d(&input.plc.points)).map(|mut m| {
-            let markers = &input.plc.point_markers;
-            if m.vertex_markers.len() >= markers.len() {
-                m.vertex_markers[..markers.len()].copy_from_slice(markers);
-            }
-            m
-        })
+    // A PLC file name implies -p.
+    let sw_run = TetSwitches {
+        plc: files.plc,
+        ..sw.clone()
     };
-    let mesh = mesh.map_err(told)?;
+    let mut opts = sw.options();
+    let f = progress.callback();
+    opts.progress = Some(f.clone());
+    // observe: the point-set path (delaunay3d) reports too.
+    let mesh = observe(Some(&f), || mesh_for(&sw_run, plc, opts, &extra));
+    let (mesh, post) = mesh.map_err(told)?;
     let mesh_time = mesh_start.elapsed();
     if !mesh.complete {
         // Printed even with -Q: the files are written but miss the requested bounds.
@@ -157,9 +163,10 @@ fn run(sw: &TetSwitches, file: &str) -> Result<(), String> {
     let written = write_outputs(
         sw,
         &files.out_stem,
-        files.plc,
+        files.plc || sw.refine,
         !plc.point_markers.is_empty(),
         &mesh,
+        &post,
         out_base,
     )
     .and_then(|()| check_interrupt());

@@ -6,7 +6,6 @@
 
 mod common3d;
 
-use std::path::Path;
 use std::time::Duration;
 
 use common3d::{
@@ -52,26 +51,6 @@ fn run_all(plc: &Plc, spec: &Spec3, opts: &[Options3]) -> Vec<TetMesh> {
             Err(e) => panic!("{e}"),
         })
         .collect()
-}
-
-/// A CAD-like plate with many short boundary features (`tests/data/notched_plate.poly`, see
-/// its header): a split point on a facet's boundary changes the facet mesh outside the facet
-/// too, and when that part was left alone a subsegment with an empty diametral circle stayed
-/// crossed there and was split until "precision exhausted" (as `oblong.off` was). It must mesh
-/// and check, with and without `-Y`.
-#[test]
-fn notched_plate_with_slots() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/notched_plate.poly");
-    let plc = idmesh::io::tetgen::read_poly(&path).unwrap().plc;
-    let spec = Spec3 {
-        check_quality: false,
-        ..Spec3::default()
-    };
-    let keep = Options3 {
-        keep_surface: true,
-        ..quality(2.0)
-    };
-    run_all(&plc, &spec, &[quality(2.0), quality(1.414), keep]);
 }
 
 /// Checks a Delaunay tetrahedralization of `pts` (with a time limit).

@@ -51,16 +51,6 @@ pub trait Geometry {
 
     /// Whether `p` lies strictly inside the diametral circle of segment `a b`.
     fn encroaches(&self, a: Self::Point, b: Self::Point, p: Self::Point) -> bool;
-
-    /// Whether `p` is in conflict with the ghost triangle over hull edge `a b` (counter-clockwise
-    /// seen from the ghost): strictly beyond the edge's line, or on the open edge itself. This
-    /// is the one rule for infinity (see the module docs), used by the 2D kernel and by the
-    /// facet meshes' triangles with a corner at infinity.
-    #[inline(always)]
-    fn beyond_hull_edge(&self, a: Self::Point, b: Self::Point, p: Self::Point) -> bool {
-        let o = self.orient(a, b, p);
-        o > 0.0 || (o == 0.0 && self.strictly_between(a, b, p))
-    }
 }
 
 /// The Euclidean plane with `f64` coordinates: the 2D mesher's geometry.

@@ -501,8 +501,10 @@ impl<G: Geometry> Cdt<G> {
             } else {
                 2
             };
-            self.geom
-                .beyond_hull_edge(self.p(v[next(k)]), self.p(v[prev(k)]), p)
+            let a = self.p(v[next(k)]);
+            let b = self.p(v[prev(k)]);
+            let o = self.geom.orient(a, b, p);
+            o > 0.0 || (o == 0.0 && self.geom.strictly_between(a, b, p))
         } else if self.tflat[t as usize] {
             // A rounding-flat sliver (three points of one input segment): decide with its true
             // orientation, so the cavity search sees the geometry the coordinates really have.
@@ -668,7 +670,9 @@ impl<G: Geometry> Cdt<G> {
             } else {
                 (v[0], v[1])
             };
-            self.geom.beyond_hull_edge(self.p(a), self.p(b), p)
+            let (a, b) = (self.p(a), self.p(b));
+            let o = self.geom.orient(a, b, p);
+            o > 0.0 || (o == 0.0 && self.geom.strictly_between(a, b, p))
         } else {
             self.geom
                 .incircle_bulk(self.p(v[0]), self.p(v[1]), self.p(v[2]), p)

@@ -67,7 +67,7 @@ int main() {
     tetgenio in;
     tetra(in, 0);
     expect_throw(in, "pqrQ", 10, "-r");
-    expect_throw(in, "pq1.4/20Q", 10, "dihedral");
+    expect_throw(in, "pq1.4/20/170Q", 10, "dihedral");
   }
   {
     // A triangle piercing the tetrahedron's face: self-intersecting input, code 3.

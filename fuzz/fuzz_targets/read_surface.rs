@@ -1,5 +1,5 @@
 //! Surface formats (`.off .ply .stl .mesh .msh`): any bytes give a parse result or a named
-//! error, never a panic;
+//! error, never a panic or a hang.
 #![no_main]
 use idmesh::io::{parse_msh, tetgen};
 use libfuzzer_sys::fuzz_target;

@@ -1,5 +1,5 @@
 //! TetGen's text formats (`.node .poly .smesh .ele .face .edge .neigh`): any bytes give a
-//! parse result or a named error, never a panic;
+//! parse result or a named error, never a panic or a hang.
 #![no_main]
 use idmesh::io::tetgen;
 use libfuzzer_sys::fuzz_target;

@@ -5,6 +5,7 @@
 # ignored); name them to run them too: fuzz_smoke.sh 60 mesh2d mesh3d.
 # Any crash, hidden panic, mesh returned as a success that fails validate(), or input that
 # runs past the time limit fails the run and leaves the input under fuzz/artifacts/.
+# A fixed seed (-seed=1) keeps the CI run repeatable: a failure there fails again on rerun.
 # Installs cargo-fuzz (and uses the nightly toolchain) when missing.
 set -euo pipefail
 cd "$(dirname "$0")/../fuzz"
@@ -26,7 +27,7 @@ for t in $TARGETS; do
   cp -r "corpus/$t/." "$work/"
   echo "== fuzz $t (${SECONDS_PER_TARGET} s)"
   if ! cargo +nightly fuzz run -O "$t" "$work" -- -max_total_time="$SECONDS_PER_TARGET" \
-      -timeout=20 -rss_limit_mb=4096 -max_len=4096 -print_final_stats=0 >"$work.log" 2>&1; then
+      -seed=1 -timeout=20 -rss_limit_mb=4096 -max_len=4096 -print_final_stats=0 >"$work.log" 2>&1; then
     tail -40 "$work.log"
     echo "fuzz target $t failed (input under fuzz/artifacts/$t)"; exit 1
   fi

@@ -277,6 +277,24 @@ pub(crate) fn capacity(count: usize, text: &str) -> usize {
     count.min(text.len() / 2 + 1)
 }
 
+/// Refuses an attribute count that the text cannot hold. Missing attributes read as 0 (as in
+/// Triangle and TetGen), so a corrupt count such as 10^12 would otherwise have every row push
+/// that many zeros; a real file spends at least a byte on each value it declares.
+pub(crate) fn check_attribute_count(
+    rec: &Record<'_>,
+    rows: usize,
+    per_row: usize,
+    text: &str,
+) -> Result<(), ParseError> {
+    if per_row > 0 && rows.saturating_mul(per_row) > text.len() {
+        return Err(rec.error(format!(
+            "{rows} rows of {per_row} attributes cannot fit in a file of {} bytes",
+            text.len()
+        )));
+    }
+    Ok(())
+}
+
 /// Parses a float exactly as `str::parse::<f64>` does (same accepted syntax, same correctly
 /// rounded value, so the same as `strtod` on well-formed input), several times faster.
 pub(crate) fn parse_f64(s: &str) -> Option<f64> {

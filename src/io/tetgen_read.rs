@@ -21,7 +21,7 @@
 use std::path::Path;
 
 use super::error::ParseError;
-use super::lines::{capacity, read_text, Record, Records};
+use super::lines::{capacity, check_attribute_count, read_text, Record, Records};
 use super::tetgen_input::TetgenInput;
 use crate::input3d::{Facet, Plc, Region3};
 use crate::mesh3d::NONE;
@@ -104,6 +104,7 @@ fn read_vertices<'a>(
         )));
     }
     let na = header.num_attributes;
+    check_attribute_count(rec, n, na, text)?;
     let mut points = Vec::with_capacity(capacity(n, text));
     let mut markers = Vec::with_capacity(if header.markers { capacity(n, text) } else { 0 });
     let mut attributes = Vec::with_capacity(capacity(n.saturating_mul(na), text));
@@ -436,6 +437,7 @@ pub fn parse_ele(
         Some(_) => rec.count(2, "attribute count")?,
         None => 0,
     };
+    check_attribute_count(&rec, nt, na, text)?;
     let mut tets = Vec::with_capacity(capacity(nt, text));
     let mut attributes = Vec::with_capacity(capacity(nt.saturating_mul(na), text));
     for k in 0..nt {
@@ -648,6 +650,39 @@ mod tests {
         let inp = parse_poly(text, "t.poly", no_node).unwrap();
         assert_eq!(inp.plc.facets[0].polygons, vec![vec![0, 1, 2, 3]]);
         assert!(inp.plc.holes.is_empty() && inp.plc.regions.is_empty());
+    }
+
+    #[test]
+    fn an_attribute_count_the_file_cannot_hold_is_refused_at_once() {
+        // Found by the read_tetgen fuzz target: every vertex pushed 10^12 default attributes.
+        let e = parse_node(
+            "8 3 1000000000000
+1 0 0 0
+",
+            "t.node",
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("attributes cannot fit"), "{e}");
+        let e = parse_ele(
+            "1 4 99999
+1 1 2 3 4
+",
+            "t.ele",
+            1,
+            4,
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("attributes cannot fit"), "{e}");
+        // Missing attributes still read as 0 when the count is plausible.
+        let inp = parse_node(
+            "2 3 2
+1 0 0 0 5
+2 1 1 1
+",
+            "t.node",
+        )
+        .unwrap();
+        assert_eq!(inp.point_attributes, vec![5.0, 0.0, 0.0, 0.0]);
     }
 
     #[test]

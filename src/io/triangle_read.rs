@@ -15,7 +15,7 @@
 use std::path::Path;
 
 use super::error::ParseError;
-use super::lines::{capacity, read_text, Record, Records};
+use super::lines::{capacity, check_attribute_count, read_text, Record, Records};
 use crate::input::{Pslg, Region};
 
 /// The contents of a Triangle `.node` or `.poly` file.
@@ -113,6 +113,7 @@ fn read_vertices<'a>(
         )));
     }
     let na = header.num_attributes;
+    check_attribute_count(rec, n, na, text)?;
     let mut points = Vec::with_capacity(capacity(n, text));
     let mut markers = header
         .markers
@@ -294,6 +295,7 @@ pub fn parse_ele(
         Some(_) => rec.count(2, "attribute count")?,
         None => 0,
     };
+    check_attribute_count(&rec, nt, na, text)?;
     let mut triangles = Vec::with_capacity(capacity(nt, text));
     let mut attributes = Vec::with_capacity(capacity(nt.saturating_mul(na), text));
     for k in 0..nt {

@@ -1,8 +1,17 @@
 //! Exact sign of small polynomial expressions in floating-point inputs, by floating-point
-//! expansions (Shewchuk's two-sum / two-product). Used behind a fast filter where `robust`
-//! has no ready-made predicate: the fixed [`Expansion`] for the dot-product sign of the
-//! encroachment tests, the growable [`DynExpansion`] for the degree-6 facet predicates of 3D
-//! meshing (`predicates::in_diametral_ball_tri`).
+//! expansions (Shewchuk's two-sum / two-product). Used behind a fast filter:
+//!
+//! - [`orient2d_exact`], [`incircle_exact`], [`orient3d_exact`] and [`insphere_exact`], the
+//!   exact stage of the orientation and in-circle/in-sphere predicates of
+//!   [`crate::predicates`]. They work in a per-thread scratch buffer that is grown on demand
+//!   and reused, and compress every minor before it is multiplied further, so a call neither
+//!   allocates (after the first) nor clears large stack arrays; their results are exact for any
+//!   inputs barring overflow and underflow.
+//! - the fixed [`Expansion`] for the dot-product sign of the encroachment tests;
+//! - the growable [`DynExpansion`] for the degree-6 facet predicates of 3D meshing
+//!   (`predicates::in_diametral_ball_tri`).
+
+use std::cell::Cell;
 
 /// `a + b = hi + lo` exactly.
 #[inline]
@@ -11,6 +20,13 @@ pub fn two_sum(a: f64, b: f64) -> (f64, f64) {
     let bv = s - a;
     let av = s - bv;
     (s, (a - av) + (b - bv))
+}
+
+/// `a + b = hi + lo` exactly when `|a| >= |b|` or `a == 0` (Dekker's Fast-Two-Sum).
+#[inline]
+pub fn fast_two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    (s, b - (s - a))
 }
 
 /// `a - b = hi + lo` exactly.
@@ -22,11 +38,376 @@ pub fn two_diff(a: f64, b: f64) -> (f64, f64) {
     (s, (a - av) + (bv - b))
 }
 
-/// `a * b = hi + lo` exactly (barring underflow), using a fused multiply-add.
+/// `a * b = hi + lo` exactly (barring underflow and overflow): a fused multiply-add where the
+/// target has one, Dekker's product with Veltkamp's split otherwise (without hardware FMA,
+/// `mul_add` is a slow library call).
 #[inline]
 pub fn two_prod(a: f64, b: f64) -> (f64, f64) {
     let p = a * b;
-    (p, a.mul_add(b, -p))
+    #[cfg(target_feature = "fma")]
+    {
+        (p, a.mul_add(b, -p))
+    }
+    #[cfg(not(target_feature = "fma"))]
+    {
+        let (ah, al) = split(a);
+        let (bh, bl) = split(b);
+        (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)
+    }
+}
+
+/// Veltkamp's split of `a` into two halves of at most 26 significant bits each.
+#[cfg(not(target_feature = "fma"))]
+#[inline]
+fn split(a: f64) -> (f64, f64) {
+    let c = 134_217_729.0 * a;
+    let hi = c - (c - a);
+    (hi, a - hi)
+}
+
+/// Shewchuk's Fast-Expansion-Sum with zero elimination: writes `e + f` (or `e - f` when
+/// `negate_f`) into `out`, which must hold `e.len() + f.len()` components, and returns the
+/// number written. Inputs and output are zero-free, non-overlapping, in increasing magnitude.
+fn sum_into(e: &[f64], f: &[f64], negate_f: bool, out: &mut [f64]) -> usize {
+    let sf = if negate_f { -1.0 } else { 1.0 };
+    let (mut i, mut j) = (0, 0);
+    let mut next = || {
+        if j == f.len() || (i < e.len() && e[i].abs() < f[j].abs()) {
+            i += 1;
+            e[i - 1]
+        } else {
+            j += 1;
+            sf * f[j - 1]
+        }
+    };
+    let total = e.len() + f.len();
+    if total == 0 {
+        return 0;
+    }
+    let mut n = 0;
+    let mut q = next();
+    for _ in 1..total {
+        let (s, err) = two_sum(q, next());
+        if err != 0.0 {
+            out[n] = err;
+            n += 1;
+        }
+        q = s;
+    }
+    if q != 0.0 {
+        out[n] = q;
+        n += 1;
+    }
+    n
+}
+
+/// Shewchuk's Scale-Expansion with zero elimination: writes `e * b` into `out`, which must
+/// hold `2 * e.len()` components, and returns the number written.
+fn scale_into(e: &[f64], b: f64, out: &mut [f64]) -> usize {
+    let Some((&first, rest)) = e.split_first() else {
+        return 0;
+    };
+    let mut n = 0;
+    let (mut q, lo) = two_prod(first, b);
+    if lo != 0.0 {
+        out[n] = lo;
+        n += 1;
+    }
+    for &t in rest {
+        let (p1, p0) = two_prod(t, b);
+        let (s, err) = two_sum(q, p0);
+        if err != 0.0 {
+            out[n] = err;
+            n += 1;
+        }
+        let (s2, err2) = fast_two_sum(p1, s);
+        if err2 != 0.0 {
+            out[n] = err2;
+            n += 1;
+        }
+        q = s2;
+    }
+    if q != 0.0 {
+        out[n] = q;
+        n += 1;
+    }
+    n
+}
+
+/// Rewrites the expansion `e` in place with as few components as its value allows
+/// (Shewchuk's Compress) and returns the new length; the value is unchanged. Both sweeps only
+/// overwrite components they have already consumed, so no buffer is needed.
+fn compress(e: &mut [f64]) -> usize {
+    let len = e.len();
+    if len < 2 {
+        return len;
+    }
+    // Top-down sweep: gather the large parts at the top, carrying the remainders down.
+    let mut bottom = len - 1;
+    let mut q = e[bottom];
+    for i in (0..len - 1).rev() {
+        let (s, err) = fast_two_sum(q, e[i]);
+        if err != 0.0 {
+            e[bottom] = s;
+            bottom -= 1;
+            q = err;
+        } else {
+            q = s;
+        }
+    }
+    // Bottom-up sweep: the final non-overlapping components, zero-free, packed at the start.
+    let mut top = 0;
+    for h in bottom + 1..len {
+        let (s, err) = fast_two_sum(e[h], q);
+        if err != 0.0 {
+            e[top] = err;
+            top += 1;
+        }
+        q = s;
+    }
+    if q != 0.0 {
+        e[top] = q;
+        top += 1;
+    }
+    top
+}
+
+thread_local! {
+    /// The exact predicates' working storage, one per thread: taken for a call and put back
+    /// after, so it is cleared only when it grows (a re-entrant or panicking call just starts
+    /// a fresh one).
+    static SCRATCH: Cell<Vec<f64>> = const { Cell::new(Vec::new()) };
+}
+
+/// An expansion held in a [`Scratch`]: `len` components from index `at`.
+#[derive(Clone, Copy)]
+struct Span {
+    at: usize,
+    len: usize,
+}
+
+/// A stack of expansions in one buffer: every operation appends its result above the
+/// operands, so the exact stage of a predicate is a straight sequence of appends, and the whole
+/// stack is dropped at once when the predicate returns.
+struct Scratch {
+    t: Vec<f64>,
+    top: usize,
+}
+
+impl Scratch {
+    /// Runs `f` with this thread's scratch buffer.
+    fn with<R>(f: impl FnOnce(&mut Scratch) -> R) -> R {
+        let mut s = Scratch {
+            t: SCRATCH.take(),
+            top: 0,
+        };
+        let r = f(&mut s);
+        SCRATCH.set(s.t);
+        r
+    }
+
+    /// Makes room for `n` more components above the top.
+    #[inline]
+    fn reserve(&mut self, n: usize) {
+        let need = self.top + n;
+        if self.t.len() < need {
+            self.t.resize(need.max(2 * self.t.len()).max(512), 0.0);
+        }
+    }
+
+    /// Claims the `n` components just written above the top.
+    #[inline]
+    fn claim(&mut self, n: usize) -> Span {
+        let s = Span {
+            at: self.top,
+            len: n,
+        };
+        self.top += n;
+        s
+    }
+
+    #[inline]
+    fn get(&self, e: Span) -> &[f64] {
+        &self.t[e.at..e.at + e.len]
+    }
+
+    /// The exact difference `a - b`.
+    fn diff(&mut self, a: f64, b: f64) -> Span {
+        self.reserve(2);
+        let (hi, lo) = two_diff(a, b);
+        let mut n = 0;
+        for x in [lo, hi] {
+            if x != 0.0 {
+                self.t[self.top + n] = x;
+                n += 1;
+            }
+        }
+        self.claim(n)
+    }
+
+    /// The exact `e + f` (`e - f` when `negate_f`); operands must lie below the top.
+    fn sum(&mut self, e: Span, f: Span, negate_f: bool) -> Span {
+        self.reserve(e.len + f.len);
+        let (lo, hi) = self.t.split_at_mut(self.top);
+        let n = sum_into(
+            &lo[e.at..e.at + e.len],
+            &lo[f.at..f.at + f.len],
+            negate_f,
+            hi,
+        );
+        self.claim(n)
+    }
+
+    /// The exact product, compressed: the shorter operand's components each scale the longer
+    /// one, and the partial products are accumulated in place.
+    fn mul(&mut self, e: Span, f: Span) -> Span {
+        let (long, short) = if e.len >= f.len { (e, f) } else { (f, e) };
+        let start = self.top;
+        let mut acc = 0;
+        for j in 0..short.len {
+            let b = self.t[short.at + j];
+            // Layout above `start`: accumulator, scaled copy, new sum (moved down after).
+            let scaled_at = start + acc;
+            self.reserve(acc + 2 * long.len + acc + 2 * long.len);
+            let (lo, hi) = self.t.split_at_mut(scaled_at);
+            let ns = scale_into(&lo[long.at..long.at + long.len], b, hi);
+            if acc == 0 {
+                acc = ns;
+                continue;
+            }
+            let sum_at = scaled_at + ns;
+            let (lo, hi) = self.t.split_at_mut(sum_at);
+            let nr = sum_into(&lo[start..start + acc], &lo[scaled_at..sum_at], false, hi);
+            self.t.copy_within(sum_at..sum_at + nr, start);
+            acc = nr;
+        }
+        let n = compress(&mut self.t[start..start + acc]);
+        self.claim(n)
+    }
+
+    /// `x·y ± z·w`, compressed.
+    fn det2(&mut self, x: Span, y: Span, z: Span, w: Span, negate: bool) -> Span {
+        let p = self.mul(x, y);
+        let q = self.mul(z, w);
+        let s = self.sum(p, q, negate);
+        self.compressed(s)
+    }
+
+    /// `Σ sᵢ·xᵢ·yᵢ` for three terms with signs `sᵢ` (`true` = minus), compressed.
+    fn dot3(&mut self, t: [(Span, Span, bool); 3]) -> Span {
+        let [p, q, r] = t.map(|(x, y, _)| self.mul(x, y));
+        let pq = self.sum(p, q, t[0].2 != t[1].2);
+        let s = self.sum(pq, r, t[0].2 != t[2].2);
+        let s = self.compressed(s);
+        if t[0].2 {
+            self.negate(s);
+        }
+        s
+    }
+
+    /// Compresses `e` (which must be the topmost expansion) in place.
+    fn compressed(&mut self, e: Span) -> Span {
+        debug_assert_eq!(e.at + e.len, self.top);
+        let n = compress(&mut self.t[e.at..e.at + e.len]);
+        self.top = e.at + n;
+        Span { at: e.at, len: n }
+    }
+
+    fn negate(&mut self, e: Span) {
+        for x in &mut self.t[e.at..e.at + e.len] {
+            *x = -*x;
+        }
+    }
+
+    /// The largest component, whose sign is that of the exact value (0 for zero): after
+    /// compression it approximates the value to within one unit in the last place.
+    fn value(&mut self, e: Span) -> f64 {
+        self.get(e).last().copied().unwrap_or(0.0)
+    }
+}
+
+/// The exact `orient2d` of [`crate::predicates::orient2d`]: `(a - c) × (b - c)`, positive when
+/// `a, b, c` are counter-clockwise. Returns a double with the exact sign (0 only when the
+/// determinant is exactly 0) that approximates the determinant.
+#[inline(never)]
+pub fn orient2d_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+    Scratch::with(|s| {
+        let [acx, acy, bcx, bcy] =
+            [(a, 0), (a, 1), (b, 0), (b, 1)].map(|(p, k)| s.diff(p[k], c[k]));
+        let d = s.det2(acx, bcy, acy, bcx, true);
+        s.value(d)
+    })
+}
+
+/// The exact `incircle` of [`crate::predicates::incircle`]: positive when `d` is inside the
+/// circle through the counter-clockwise `a, b, c`. Exact sign, approximate magnitude.
+#[inline(never)]
+pub fn incircle_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> f64 {
+    Scratch::with(|s| {
+        let [adx, ady] = [0, 1].map(|k| s.diff(a[k], d[k]));
+        let [bdx, bdy] = [0, 1].map(|k| s.diff(b[k], d[k]));
+        let [cdx, cdy] = [0, 1].map(|k| s.diff(c[k], d[k]));
+        let bc = s.det2(bdx, cdy, cdx, bdy, true);
+        let ca = s.det2(cdx, ady, adx, cdy, true);
+        let ab = s.det2(adx, bdy, bdx, ady, true);
+        let alift = s.det2(adx, adx, ady, ady, false);
+        let blift = s.det2(bdx, bdx, bdy, bdy, false);
+        let clift = s.det2(cdx, cdx, cdy, cdy, false);
+        let det = s.dot3([(alift, bc, false), (blift, ca, false), (clift, ab, false)]);
+        s.value(det)
+    })
+}
+
+/// The exact `orient3d` of [`crate::predicates::orient3d`], with Shewchuk's sign: positive
+/// when `d` lies below the plane of `a, b, c` seen counter-clockwise from above. Exact sign,
+/// approximate magnitude.
+#[inline(never)]
+pub fn orient3d_exact(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
+    Scratch::with(|s| {
+        let [adx, ady, adz] = [0, 1, 2].map(|k| s.diff(a[k], d[k]));
+        let [bdx, bdy, bdz] = [0, 1, 2].map(|k| s.diff(b[k], d[k]));
+        let [cdx, cdy, cdz] = [0, 1, 2].map(|k| s.diff(c[k], d[k]));
+        let bc = s.det2(bdx, cdy, cdx, bdy, true);
+        let ca = s.det2(cdx, ady, adx, cdy, true);
+        let ab = s.det2(adx, bdy, bdx, ady, true);
+        let det = s.dot3([(adz, bc, false), (bdz, ca, false), (cdz, ab, false)]);
+        s.value(det)
+    })
+}
+
+/// The exact `insphere` of [`crate::predicates::insphere`]: positive when `e` is inside the
+/// sphere through `a, b, c, d` for `orient3d(a, b, c, d) > 0`. Exact sign, approximate
+/// magnitude.
+#[inline(never)]
+pub fn insphere_exact(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3], e: [f64; 3]) -> f64 {
+    Scratch::with(|s| {
+        let [aex, aey, aez] = [0, 1, 2].map(|k| s.diff(a[k], e[k]));
+        let [bex, bey, bez] = [0, 1, 2].map(|k| s.diff(b[k], e[k]));
+        let [cex, cey, cez] = [0, 1, 2].map(|k| s.diff(c[k], e[k]));
+        let [dex, dey, dez] = [0, 1, 2].map(|k| s.diff(d[k], e[k]));
+        let ab = s.det2(aex, bey, bex, aey, true);
+        let bc = s.det2(bex, cey, cex, bey, true);
+        let cd = s.det2(cex, dey, dex, cey, true);
+        let da = s.det2(dex, aey, aex, dey, true);
+        let ac = s.det2(aex, cey, cex, aey, true);
+        let bd = s.det2(bex, dey, dex, bey, true);
+        let abc = s.dot3([(aez, bc, false), (bez, ac, true), (cez, ab, false)]);
+        let bcd = s.dot3([(bez, cd, false), (cez, bd, true), (dez, bc, false)]);
+        let cda = s.dot3([(cez, da, false), (dez, ac, false), (aez, cd, false)]);
+        let dab = s.dot3([(dez, ab, false), (aez, bd, false), (bez, da, false)]);
+        let lift = |s: &mut Scratch, x: Span, y: Span, z: Span| {
+            s.dot3([(x, x, false), (y, y, false), (z, z, false)])
+        };
+        let alift = lift(s, aex, aey, aez);
+        let blift = lift(s, bex, bey, bez);
+        let clift = lift(s, cex, cey, cez);
+        let dlift = lift(s, dex, dey, dez);
+        let left = s.det2(dlift, abc, clift, dab, true);
+        let right = s.det2(blift, cda, alift, bcd, true);
+        let det = s.sum(left, right, false);
+        let det = s.compressed(det);
+        s.value(det)
+    })
 }
 
 /// A small expansion: a sum of non-overlapping doubles in increasing magnitude.
@@ -143,6 +524,15 @@ enum Terms {
 }
 
 impl Terms {
+    /// `n` zeros, to be overwritten and truncated.
+    fn zeroed(n: usize) -> Self {
+        if n <= INLINE {
+            Terms::Inline(n, [0.0; INLINE])
+        } else {
+            Terms::Heap(vec![0.0; n])
+        }
+    }
+
     fn with_capacity(n: usize) -> Self {
         if n <= INLINE {
             Terms::Inline(0, [0.0; INLINE])
@@ -276,35 +666,15 @@ impl DynExpansion {
     /// The exact sum (Shewchuk's Fast-Expansion-Sum with zero elimination: the components of
     /// both, taken in increasing magnitude, run through one Two-Sum sweep).
     pub fn add(&self, other: &DynExpansion) -> DynExpansion {
+        self.sum(other, false)
+    }
+
+    /// `self + other`, or `self - other` when `negate`.
+    fn sum(&self, other: &DynExpansion, negate: bool) -> DynExpansion {
         let (e, f) = (self.terms(), other.terms());
-        if e.is_empty() {
-            return other.clone();
-        }
-        if f.is_empty() {
-            return self.clone();
-        }
-        let (mut i, mut j) = (0, 0);
-        let mut next = || {
-            if j == f.len() || (i < e.len() && e[i].abs() < f[j].abs()) {
-                i += 1;
-                e[i - 1]
-            } else {
-                j += 1;
-                f[j - 1]
-            }
-        };
-        let mut out = Terms::with_capacity(e.len() + f.len());
-        let mut q = next();
-        for _ in 1..e.len() + f.len() {
-            let (s, err) = two_sum(q, next());
-            if err != 0.0 {
-                out.push(err);
-            }
-            q = s;
-        }
-        if q != 0.0 {
-            out.push(q);
-        }
+        let mut out = Terms::zeroed(e.len() + f.len());
+        let n = sum_into(e, f, negate, out.as_mut_slice());
+        out.truncate(n);
         DynExpansion { terms: out }
     }
 
@@ -319,34 +689,15 @@ impl DynExpansion {
 
     /// The exact difference `self - other`.
     pub fn sub(&self, other: &DynExpansion) -> DynExpansion {
-        self.add(&other.neg())
+        self.sum(other, true)
     }
 
     /// The exact product with one double (Shewchuk's Scale-Expansion with zero elimination).
     pub fn scale(&self, b: f64) -> DynExpansion {
-        let mut out = Terms::with_capacity(2 * self.terms().len());
-        let Some((&first, rest)) = self.terms().split_first() else {
-            return DynExpansion::zero();
-        };
-        let (mut q, lo) = two_prod(first, b);
-        if lo != 0.0 {
-            out.push(lo);
-        }
-        for &t in rest {
-            let (p1, p0) = two_prod(t, b);
-            let (s, err) = two_sum(q, p0);
-            if err != 0.0 {
-                out.push(err);
-            }
-            let (s2, err2) = two_sum(p1, s);
-            if err2 != 0.0 {
-                out.push(err2);
-            }
-            q = s2;
-        }
-        if q != 0.0 {
-            out.push(q);
-        }
+        let e = self.terms();
+        let mut out = Terms::zeroed(2 * e.len());
+        let n = scale_into(e, b, out.as_mut_slice());
+        out.truncate(n);
         DynExpansion { terms: out }
     }
 
@@ -371,42 +722,10 @@ impl DynExpansion {
     }
 
     /// Rewrites the expansion in place with as few components as its value allows
-    /// (Shewchuk's Compress); the value is unchanged. Both sweeps only overwrite components
-    /// they have already consumed, so no buffer is needed.
+    /// (Shewchuk's Compress); the value is unchanged.
     pub fn compress(&mut self) {
-        let len = self.terms().len();
-        if len < 2 {
-            return;
-        }
-        let e = self.terms.as_mut_slice();
-        // Top-down sweep: gather the large parts at the top, carrying the remainders down.
-        let mut bottom = len - 1;
-        let mut q = e[bottom];
-        for i in (0..len - 1).rev() {
-            let (s, err) = two_sum(q, e[i]);
-            if err != 0.0 {
-                e[bottom] = s;
-                bottom -= 1;
-                q = err;
-            } else {
-                q = s;
-            }
-        }
-        // Bottom-up sweep: the final non-overlapping components, zero-free, packed at the start.
-        let mut top = 0;
-        for h in bottom + 1..len {
-            let (s, err) = two_sum(e[h], q);
-            if err != 0.0 {
-                e[top] = err;
-                top += 1;
-            }
-            q = s;
-        }
-        if q != 0.0 {
-            e[top] = q;
-            top += 1;
-        }
-        self.terms.truncate(top);
+        let n = compress(self.terms.as_mut_slice());
+        self.terms.truncate(n);
     }
 }
 
@@ -596,5 +915,37 @@ mod tests {
         c.compress();
         assert_eq!(c.sub(&before).sign(), 0);
         assert_eq!(c.neg().add(&before).sign(), 0);
+    }
+
+    #[test]
+    fn exact_predicates_grow_the_scratch_and_match_robust() {
+        use robust::Coord3D;
+        let c3 = |p: [f64; 3]| Coord3D {
+            x: p[0],
+            y: p[1],
+            z: p[2],
+        };
+        let sgn = |x: f64| (x > 0.0) as i32 - (x < 0.0) as i32;
+        let mut rng = Rng(29);
+        let mut longest = 0;
+        for _ in 0..3000 {
+            // Every coordinate at its own scale, 2^-90 .. 2^90: the exact values need long
+            // expansions, longer than the first scratch buffer.
+            let mut pt = || {
+                [0; 3].map(|_| {
+                    let (x, _) = rng.dyadic(53, 0, 0);
+                    x * 2f64.powi(rng.below(181) as i32 - 90 - 52)
+                })
+            };
+            let [a, b, c, d, e] = [pt(), pt(), pt(), pt(), pt()];
+            let want = sgn(robust::insphere(c3(a), c3(b), c3(c), c3(d), c3(e)));
+            assert_eq!(sgn(insphere_exact(a, b, c, d, e)), want);
+            let want = sgn(robust::orient3d(c3(a), c3(b), c3(c), c3(d)));
+            assert_eq!(sgn(orient3d_exact(a, b, c, d)), want);
+            let v = SCRATCH.take();
+            longest = longest.max(v.len());
+            SCRATCH.set(v);
+        }
+        assert!(longest > 512, "the scratch never grew: {longest}");
     }
 }

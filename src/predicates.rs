@@ -1,53 +1,74 @@
 //! Exact geometric predicates. Every topological decision of the mesher goes through here.
 //!
-//! Orientation and in-circle come from the `robust` crate (Shewchuk's adaptive predicates).
-//! Encroachment (a point strictly inside a segment's diametral circle) is the exact sign of a
-//! dot product, computed in [`crate::exact`].
+//! Orientation, in-circle and in-sphere are Shewchuk's predicates ("Adaptive Precision
+//! Floating-Point Arithmetic and Fast Robust Geometric Predicates", 1997): a floating-point
+//! evaluation with his a-priori error bound (stage A) decides whenever it can, and the exact
+//! expansion arithmetic of [`crate::exact`] decides the rest. The `_fast` variants are the
+//! same predicates with the filter forced inline, for the kernels' hot loops ([`orient3d_fast`],
+//! [`insphere_fast`], [`incircle_fast`]); the in-sphere one uses a cheaper bound and a
+//! double-double stage before the exact one, because nearly cospherical inputs are common in
+//! 3D refinement. Encroachment (a point strictly inside a segment's diametral circle) is the
+//! exact sign of a dot product, computed in [`crate::exact`].
 //!
 //! The 3D facet meshes need "2D-in-3D" decisions without projecting coordinates (a projected
 //! circle is an ellipse): [`incircle3d`] for points in a facet plane, [`in_diametral_ball_tri`]
 //! and [`in_diametral_ball_seg3`] for encroachment, [`orient2d_proj`] and [`dominant_axis`] for
 //! orientation inside a plane.
 
-use robust::{Coord, Coord3D};
+use crate::exact::{
+    fast_two_sum, incircle_exact, insphere_exact, orient2d_exact, orient3d_exact, two_prod, two_sum,
+};
 
-#[inline]
-fn c2(p: [f64; 2]) -> Coord<f64> {
-    Coord { x: p[0], y: p[1] }
-}
-
-#[inline]
-fn c3(p: [f64; 3]) -> Coord3D<f64> {
-    Coord3D {
-        x: p[0],
-        y: p[1],
-        z: p[2],
-    }
-}
+/// Error-bound constants of Shewchuk's stage-A filters (ε = 2⁻⁵³).
+const EPS: f64 = f64::EPSILON * 0.5;
+const CCW_BOUND_A: f64 = (3.0 + 16.0 * EPS) * EPS;
+const ICC_BOUND_A: f64 = (10.0 + 96.0 * EPS) * EPS;
+const O3D_BOUND_A: f64 = (7.0 + 56.0 * EPS) * EPS;
+const ISP_BOUND_A: f64 = (16.0 + 224.0 * EPS) * EPS;
 
 /// Positive when `a, b, c` are counter-clockwise, negative when clockwise, zero when collinear.
-/// Only the sign is meaningful (exact).
+/// Only the sign is exact; the magnitude approximates twice the signed area.
 #[inline]
 pub fn orient2d(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
-    robust::orient2d(c2(a), c2(b), c2(c))
+    let detleft = (a[0] - c[0]) * (b[1] - c[1]);
+    let detright = (a[1] - c[1]) * (b[0] - c[0]);
+    let det = detleft - detright;
+    // Shewchuk's stage A: when the two products differ in sign (or one is zero) no
+    // cancellation can occur and the rounded difference has the exact sign.
+    let detsum = if detleft > 0.0 {
+        if detright <= 0.0 {
+            return det;
+        }
+        detleft + detright
+    } else if detleft < 0.0 {
+        if detright >= 0.0 {
+            return det;
+        }
+        -detleft - detright
+    } else {
+        return det;
+    };
+    let bound = CCW_BOUND_A * detsum;
+    if det >= bound || -det >= bound {
+        det
+    } else {
+        orient2d_exact(a, b, c)
+    }
 }
 
 /// Positive when `d` lies strictly inside the circle through the counter-clockwise triangle
 /// `a, b, c`, negative outside, zero on it (exact sign).
 #[inline]
 pub fn incircle(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> f64 {
-    robust::incircle(c2(a), c2(b), c2(c), c2(d))
+    incircle_fast(a, b, c, d)
 }
 
 /// [`incircle`] with its floating-point stage inlined: the determinant (translated to `d`)
-/// and the standard a-priori error bound on it, `(10 + 96ε)ε` times the permanent (Shewchuk,
-/// "Adaptive Precision Floating-Point Arithmetic and Fast Robust Geometric Predicates",
-/// 1997, ε = 2⁻⁵³). When the determinant clears the bound its sign is certain; otherwise
-/// the exact adaptive [`incircle`] decides. Same sign as [`incircle`] always.
+/// and the standard a-priori error bound on it, `(10 + 96ε)ε` times the permanent. When the
+/// determinant clears the bound its sign is certain; otherwise the exact stage decides. Same
+/// sign as [`incircle`] always.
 #[inline(always)]
 pub fn incircle_fast(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> f64 {
-    const EPS: f64 = f64::EPSILON * 0.5;
-    const BOUND: f64 = (10.0 + 96.0 * EPS) * EPS;
     let (adx, ady) = (a[0] - d[0], a[1] - d[1]);
     let (bdx, bdy) = (b[0] - d[0], b[1] - d[1]);
     let (cdx, cdy) = (c[0] - d[0], c[1] - d[1]);
@@ -64,26 +85,300 @@ pub fn incircle_fast(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> f64 
     let permanent = (bdxcdy.abs() + cdxbdy.abs()) * alift
         + (cdxady.abs() + adxcdy.abs()) * blift
         + (adxbdy.abs() + bdxady.abs()) * clift;
-    let bound = BOUND * permanent;
+    let bound = ICC_BOUND_A * permanent;
     if det > bound || -det > bound {
         det
     } else {
-        incircle(a, b, c, d)
+        incircle_exact(a, b, c, d)
     }
 }
 
 /// Shewchuk's orient3d: positive when `d` lies *below* the plane of `a, b, c` seen
-/// counter-clockwise from above (the opposite sign of the signed volume of `abcd`).
+/// counter-clockwise from above (the opposite sign of the signed volume of `abcd`). Exact sign.
 #[inline]
 pub fn orient3d(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
-    robust::orient3d(c3(a), c3(b), c3(c), c3(d))
+    orient3d_fast(a, b, c, d)
+}
+
+/// [`orient3d`] with its floating-point filter inlined: when the rounded determinant clears
+/// Shewchuk's stage-A error bound its sign is exact and returned; otherwise the exact stage
+/// decides. Only the sign of the result is meaningful.
+#[inline(always)]
+pub fn orient3d_fast(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
+    let (adx, bdx, cdx) = (a[0] - d[0], b[0] - d[0], c[0] - d[0]);
+    let (ady, bdy, cdy) = (a[1] - d[1], b[1] - d[1], c[1] - d[1]);
+    let (adz, bdz, cdz) = (a[2] - d[2], b[2] - d[2], c[2] - d[2]);
+    let (bdxcdy, cdxbdy) = (bdx * cdy, cdx * bdy);
+    let (cdxady, adxcdy) = (cdx * ady, adx * cdy);
+    let (adxbdy, bdxady) = (adx * bdy, bdx * ady);
+    let det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+    let permanent = (bdxcdy.abs() + cdxbdy.abs()) * adz.abs()
+        + (cdxady.abs() + adxcdy.abs()) * bdz.abs()
+        + (adxbdy.abs() + bdxady.abs()) * cdz.abs();
+    let bound = O3D_BOUND_A * permanent;
+    if det > bound || -det > bound {
+        det
+    } else {
+        orient3d_exact(a, b, c, d)
+    }
 }
 
 /// Shewchuk's insphere: positive when `e` lies inside the sphere through `a, b, c, d`, for
 /// `orient3d(a, b, c, d) > 0` (exact sign).
 #[inline]
 pub fn insphere(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3], e: [f64; 3]) -> f64 {
-    robust::insphere(c3(a), c3(b), c3(c), c3(d), c3(e))
+    insphere_fast(a, b, c, d, e)
+}
+
+/// [`insphere`] with a cheaper floating-point filter inlined (see [`insphere_filter`]); the
+/// rare uncertain cases go to [`insphere_near_degenerate`]. Only the sign of the result is
+/// meaningful.
+#[inline(always)]
+pub fn insphere_fast(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3], e: [f64; 3]) -> f64 {
+    match insphere_filter(a, b, c, d, e) {
+        Some(det) => det,
+        None => insphere_near_degenerate(&a, &b, &c, &d, &e),
+    }
+}
+
+/// Shewchuk's stage-A evaluation of insphere with a cheaper error bound: the permanent is
+/// bounded from the largest coordinate differences (as in CGAL's static filters). Returns the
+/// rounded determinant when it clears the bound (then its sign is exact), else `None`.
+#[inline(always)]
+pub(crate) fn insphere_filter(
+    a: [f64; 3],
+    b: [f64; 3],
+    c: [f64; 3],
+    d: [f64; 3],
+    e: [f64; 3],
+) -> Option<f64> {
+    let (aex, bex, cex, dex) = (a[0] - e[0], b[0] - e[0], c[0] - e[0], d[0] - e[0]);
+    let (aey, bey, cey, dey) = (a[1] - e[1], b[1] - e[1], c[1] - e[1], d[1] - e[1]);
+    let (aez, bez, cez, dez) = (a[2] - e[2], b[2] - e[2], c[2] - e[2], d[2] - e[2]);
+    let (aexbey, bexaey) = (aex * bey, bex * aey);
+    let (bexcey, cexbey) = (bex * cey, cex * bey);
+    let (cexdey, dexcey) = (cex * dey, dex * cey);
+    let (dexaey, aexdey) = (dex * aey, aex * dey);
+    let (aexcey, cexaey) = (aex * cey, cex * aey);
+    let (bexdey, dexbey) = (bex * dey, dex * bey);
+    let ab = aexbey - bexaey;
+    let bc = bexcey - cexbey;
+    let cd = cexdey - dexcey;
+    let da = dexaey - aexdey;
+    let ac = aexcey - cexaey;
+    let bd = bexdey - dexbey;
+    let abc = aez * bc - bez * ac + cez * ab;
+    let bcd = bez * cd - cez * bd + dez * bc;
+    let cda = cez * da + dez * ac + aez * cd;
+    let dab = dez * ab + aez * bd + bez * da;
+    let alift = aex * aex + aey * aey + aez * aez;
+    let blift = bex * bex + bey * bey + bez * bez;
+    let clift = cex * cex + cey * cey + cez * cez;
+    let dlift = dex * dex + dey * dey + dez * dez;
+    let det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+    // Shewchuk's bound is ISP_BOUND_A times the permanent: the same sum with every product
+    // replaced by products of absolute values. Each of its 4 · 3 · 2 = 24 terms is at most
+    // mx · my · mz · (mx² + my² + mz²) for the largest absolute coordinate differences, so 24
+    // times that (plus a 1e-12 allowance for rounding in this product and in the permanent)
+    // bounds it, for a quarter of the work.
+    let mx = aex.abs().max(bex.abs()).max(cex.abs().max(dex.abs()));
+    let my = aey.abs().max(bey.abs()).max(cey.abs().max(dey.abs()));
+    let mz = aez.abs().max(bez.abs()).max(cez.abs().max(dez.abs()));
+    let permanent = 24.0 * (1.0 + 1e-12) * (mx * my * mz) * (mx * mx + my * my + mz * mz);
+    let bound = ISP_BOUND_A * permanent;
+    // A bound that underflowed proves nothing: leave those to the adaptive predicate.
+    ((det > bound || -det > bound) && bound > 1e-290).then_some(det)
+}
+
+/// The slow path of [`insphere_fast`]: a double-double evaluation with a proven error bound
+/// (see [`insphere_dd`]), then Shewchuk's adaptive stages. Nearly cospherical points (a point
+/// set on a sphere, say) fail the float filter on almost every test; double-double settles
+/// nearly all of them at a fraction of the cost of exact expansion arithmetic.
+#[cold]
+#[inline(never)]
+pub(crate) fn insphere_near_degenerate(
+    &a: &[f64; 3],
+    &b: &[f64; 3],
+    &c: &[f64; 3],
+    &d: &[f64; 3],
+    &e: &[f64; 3],
+) -> f64 {
+    if let Some(det) = insphere_dd(a, b, c, d, e) {
+        return det;
+    }
+    if let Some(det) = insphere_small_integers(a, b, c, d, e) {
+        return det;
+    }
+    insphere_exact(a, b, c, d, e)
+}
+
+/// The exact insphere determinant when the twelve coordinate differences are exact and, after
+/// one common power-of-two scaling, integers below `2^21` (lattices, dyadic grids, cube
+/// corners and midpoints: the exactly cospherical inputs where the determinant is 0 and no
+/// filter can decide). In `i128` every term is below `2^112`, so nothing overflows. `None`
+/// otherwise. Only the sign of the result is meaningful.
+pub(crate) fn insphere_small_integers(
+    a: [f64; 3],
+    b: [f64; 3],
+    c: [f64; 3],
+    d: [f64; 3],
+    e: [f64; 3],
+) -> Option<f64> {
+    let mut diffs = [0.0f64; 12];
+    let mut m = 0.0f64;
+    for (i, p) in [a, b, c, d].iter().enumerate() {
+        for k in 0..3 {
+            let t = dd_two_sum(p[k], -e[k]);
+            if t.lo != 0.0 {
+                return None;
+            }
+            diffs[3 * i + k] = t.hi;
+            m = m.max(t.hi.abs());
+        }
+    }
+    if m == 0.0 || !m.is_finite() {
+        return (m == 0.0).then_some(0.0);
+    }
+    // scale = 2^(21 − ⌈log2 m⌉): m · scale lies in [2^20, 2^21].
+    let exp = ((m.to_bits() >> 52) & 0x7ff) as i32 - 1022;
+    let shift = 21 - exp;
+    if !(-1000..=1000).contains(&shift) {
+        return None;
+    }
+    let scale = 2f64.powi(shift);
+    let mut v = [0i128; 12];
+    for (x, out) in diffs.iter().zip(&mut v) {
+        let y = x * scale;
+        if y != y.trunc() || y.abs() > (1u64 << 21) as f64 {
+            return None;
+        }
+        *out = y as i128;
+    }
+    let [aex, aey, aez, bex, bey, bez, cex, cey, cez, dex, dey, dez] = v;
+    let ab = aex * bey - bex * aey;
+    let bc = bex * cey - cex * bey;
+    let cd = cex * dey - dex * cey;
+    let da = dex * aey - aex * dey;
+    let ac = aex * cey - cex * aey;
+    let bd = bex * dey - dex * bey;
+    let abc = aez * bc - bez * ac + cez * ab;
+    let bcd = bez * cd - cez * bd + dez * bc;
+    let cda = cez * da + dez * ac + aez * cd;
+    let dab = dez * ab + aez * bd + bez * da;
+    let alift = aex * aex + aey * aey + aez * aez;
+    let blift = bex * bex + bey * bey + bez * bez;
+    let clift = cex * cex + cey * cey + cez * cez;
+    let dlift = dex * dex + dey * dey + dez * dez;
+    let det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+    Some(det.signum() as f64)
+}
+
+/// A double-word number `hi + lo` with `|lo| <= ulp(hi) / 2`.
+#[derive(Clone, Copy)]
+struct Dd {
+    hi: f64,
+    lo: f64,
+}
+
+/// [`crate::exact::two_sum`] as a [`Dd`].
+#[inline(always)]
+fn dd_two_sum(a: f64, b: f64) -> Dd {
+    let (hi, lo) = two_sum(a, b);
+    Dd { hi, lo }
+}
+
+/// [`crate::exact::fast_two_sum`] as a [`Dd`].
+#[inline(always)]
+fn dd_fast_two_sum(a: f64, b: f64) -> Dd {
+    let (hi, lo) = fast_two_sum(a, b);
+    Dd { hi, lo }
+}
+
+impl Dd {
+    /// AccurateDWPlusDW (Joldes, Muller, Popescu, ACM TOMS 2017, Alg. 6): relative error
+    /// below `3u²/(1 − 4u)`, `u = 2⁻⁵³`, for all inputs.
+    #[inline(always)]
+    fn add(self, y: Dd) -> Dd {
+        let s = dd_two_sum(self.hi, y.hi);
+        let t = dd_two_sum(self.lo, y.lo);
+        let v = dd_fast_two_sum(s.hi, s.lo + t.hi);
+        dd_fast_two_sum(v.hi, t.lo + v.lo)
+    }
+
+    #[inline(always)]
+    fn sub(self, y: Dd) -> Dd {
+        self.add(Dd {
+            hi: -y.hi,
+            lo: -y.lo,
+        })
+    }
+
+    /// DWTimesDW1 (same paper, Alg. 10): relative error below `7u²`.
+    #[inline(always)]
+    fn mul(self, y: Dd) -> Dd {
+        let (hi, lo) = two_prod(self.hi, y.hi);
+        let c = Dd { hi, lo };
+        let cl2 = self.hi * y.lo + self.lo * y.hi;
+        dd_fast_two_sum(c.hi, c.lo + cl2)
+    }
+}
+
+/// The sign of Shewchuk's insphere determinant evaluated in double-double, or `None` when that
+/// evaluation cannot certify it.
+///
+/// The coordinate differences are exact (TwoSum); every later operation has relative error
+/// at most `δ = 7u²` (see [`Dd`]), and no path through the formula (Shewchuk's arrangement)
+/// has more than 8 operations, so the computed value is within `γ₈ = 8δ/(1 − 8δ) < 57u²` times
+/// the permanent of the exact value (the same formula in absolute values). The permanent is at
+/// most `24 · mx · my · mz · (mx² + my² + mz²)` (see [`insphere_fast`]); `1e-28` times that
+/// product leaves a factor of six over `24 · 57u²`. Underflow and overflow, which void the
+/// error-free transformations, are excluded by requiring every axis' largest difference to lie
+/// in `[1e-20, 1e20]`: any underflowed partial product is then below `1e-240`, far beneath the
+/// bound, and nothing can overflow.
+pub(crate) fn insphere_dd(
+    a: [f64; 3],
+    b: [f64; 3],
+    c: [f64; 3],
+    d: [f64; 3],
+    e: [f64; 3],
+) -> Option<f64> {
+    let diff = |p: [f64; 3], k: usize| dd_two_sum(p[k], -e[k]);
+    let [aex, bex, cex, dex] = [a, b, c, d].map(|p| diff(p, 0));
+    let [aey, bey, cey, dey] = [a, b, c, d].map(|p| diff(p, 1));
+    let [aez, bez, cez, dez] = [a, b, c, d].map(|p| diff(p, 2));
+    let max = |v: [Dd; 4]| v.iter().fold(0.0f64, |m, x| m.max(x.hi.abs()));
+    let (mx, my, mz) = (
+        max([aex, bex, cex, dex]),
+        max([aey, bey, cey, dey]),
+        max([aez, bez, cez, dez]),
+    );
+    if ![mx, my, mz].iter().all(|&m| (1e-20..=1e20).contains(&m)) {
+        return None;
+    }
+    let ab = aex.mul(bey).sub(bex.mul(aey));
+    let bc = bex.mul(cey).sub(cex.mul(bey));
+    let cd = cex.mul(dey).sub(dex.mul(cey));
+    let da = dex.mul(aey).sub(aex.mul(dey));
+    let ac = aex.mul(cey).sub(cex.mul(aey));
+    let bd = bex.mul(dey).sub(dex.mul(bey));
+    let abc = aez.mul(bc).sub(bez.mul(ac)).add(cez.mul(ab));
+    let bcd = bez.mul(cd).sub(cez.mul(bd)).add(dez.mul(bc));
+    let cda = cez.mul(da).add(dez.mul(ac)).add(aez.mul(cd));
+    let dab = dez.mul(ab).add(aez.mul(bd)).add(bez.mul(da));
+    let lift = |x: Dd, y: Dd, z: Dd| x.mul(x).add(y.mul(y)).add(z.mul(z));
+    let alift = lift(aex, aey, aez);
+    let blift = lift(bex, bey, bez);
+    let clift = lift(cex, cey, cez);
+    let dlift = lift(dex, dey, dez);
+    let det = dlift
+        .mul(abc)
+        .sub(clift.mul(dab))
+        .add(blift.mul(cda).sub(alift.mul(bcd)));
+    // The differences' low parts add at most a relative u to each maximum (covered by the
+    // factor-six margin, as is the rounding of this product).
+    let bound = 1e-28 * (mx * my * mz) * (mx * mx + my * my + mz * mz);
+    // |lo| <= u |hi|, so |hi| > 2 · bound puts the double-double value beyond the bound too.
+    (det.hi.abs() > 2.0 * bound).then_some(det.hi)
 }
 
 /// `true` when `p` lies strictly inside the diametral circle of segment `ab`

@@ -6,13 +6,10 @@ use std::collections::BTreeSet;
 
 use super::delaunay::build;
 use super::order::{brio_hilbert_order, hilbert_index_bits};
-use super::store::{
-    in_circumcircle_coplanar, insphere_dd, insphere_fast, insphere_small_integers, Located, Tets,
-    FACE, GHOST,
-};
+use super::store::{in_circumcircle_coplanar, Located, Tets, FACE, GHOST};
 use super::{delaunay3d, TetMesh, NONE};
 use crate::error::{Error, InputError};
-use crate::predicates::{insphere, orient3d};
+use crate::predicates::{insphere, insphere_dd, insphere_fast, insphere_small_integers, orient3d};
 
 /// SplitMix64, for reproducible test inputs.
 struct Rng(u64);

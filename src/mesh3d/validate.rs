@@ -5,10 +5,11 @@
 //! empty-circumsphere check (a uniform grid around each circumsphere, widened by a bound on the
 //! circumcenter's rounding error); a vertex is reported only when exact insphere says so.
 
-use super::store::{insphere_fast as insphere, orient3d_fast as orient3d, Tets, FACE, GHOST};
+use super::store::{Tets, FACE, GHOST};
 use super::{TetMesh, NONE};
 use crate::error::Error;
 use crate::geometry::{dist2_3, tet_circumcenter};
+use crate::predicates::{insphere_fast as insphere, orient3d_fast as orient3d};
 
 /// Checks a tet mesh exactly: index ranges and array lengths; every tet positively oriented;
 /// neighbours mutual, sharing the right three vertices, on opposite sides of them; no face in

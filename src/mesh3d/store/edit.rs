@@ -7,12 +7,12 @@
 //! as it was.
 
 use super::{
-    get_state, neighbor_ref, orient3d_fast, set_state, TetId, Tets, VertexId, DEAD, FACE, GHOST,
-    IN_CAVITY, TESTED_OUT,
+    get_state, neighbor_ref, set_state, TetId, Tets, VertexId, DEAD, FACE, GHOST, IN_CAVITY,
+    TESTED_OUT,
 };
 use crate::hash::FastMap;
 use crate::mesh3d::NONE;
-use crate::predicates::orient3d;
+use crate::predicates::{orient3d, orient3d_fast};
 
 /// Why [`Tets::replace`] refused an edit (the store is unchanged).
 #[derive(Debug, Clone, PartialEq, Eq)]

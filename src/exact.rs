@@ -172,6 +172,14 @@ fn compress(e: &mut [f64]) -> usize {
     top
 }
 
+/// `x·y - z·w` exactly into `out` (at most four components, zero-free), returning the count.
+#[inline(always)]
+fn two_two_diff(x: f64, y: f64, z: f64, w: f64, out: &mut [f64; 4]) -> usize {
+    let (p1, p0) = two_prod(x, y);
+    let (q1, q0) = two_prod(z, w);
+    sum_into(&[p0, p1], &[q0, q1], true, out)
+}
+
 thread_local! {
     /// The exact predicates' working storage, one per thread: taken for a call and put back
     /// after, so it is cleared only when it grows (a re-entrant or panicking call just starts
@@ -207,12 +215,18 @@ impl Scratch {
     }
 
     /// Makes room for `n` more components above the top.
-    #[inline]
+    #[inline(always)]
     fn reserve(&mut self, n: usize) {
-        let need = self.top + n;
-        if self.t.len() < need {
-            self.t.resize(need.max(2 * self.t.len()).max(512), 0.0);
+        if self.t.len() < self.top + n {
+            self.grow(n);
         }
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn grow(&mut self, n: usize) {
+        let need = self.top + n;
+        self.t.resize(need.max(2 * self.t.len()).max(512), 0.0);
     }
 
     /// Claims the `n` components just written above the top.
@@ -232,15 +246,19 @@ impl Scratch {
     }
 
     /// The exact difference `a - b`.
+    #[inline(always)]
     fn diff(&mut self, a: f64, b: f64) -> Span {
         self.reserve(2);
         let (hi, lo) = two_diff(a, b);
+        let at = self.top;
         let mut n = 0;
-        for x in [lo, hi] {
-            if x != 0.0 {
-                self.t[self.top + n] = x;
-                n += 1;
-            }
+        if lo != 0.0 {
+            self.t[at] = lo;
+            n = 1;
+        }
+        if hi != 0.0 {
+            self.t[at + n] = hi;
+            n += 1;
         }
         self.claim(n)
     }
@@ -259,30 +277,30 @@ impl Scratch {
     }
 
     /// The exact product, compressed: the shorter operand's components each scale the longer
-    /// one, and the partial products are accumulated in place.
+    /// one, and the partial products are accumulated (each partial sum is written above the
+    /// previous one rather than copied back: the space is reclaimed when the predicate ends).
     fn mul(&mut self, e: Span, f: Span) -> Span {
         let (long, short) = if e.len >= f.len { (e, f) } else { (f, e) };
-        let start = self.top;
-        let mut acc = 0;
+        let mut acc = Span {
+            at: self.top,
+            len: 0,
+        };
         for j in 0..short.len {
             let b = self.t[short.at + j];
-            // Layout above `start`: accumulator, scaled copy, new sum (moved down after).
-            let scaled_at = start + acc;
-            self.reserve(acc + 2 * long.len + acc + 2 * long.len);
+            self.reserve(2 * long.len + acc.len + 2 * long.len);
+            let scaled_at = self.top;
             let (lo, hi) = self.t.split_at_mut(scaled_at);
             let ns = scale_into(&lo[long.at..long.at + long.len], b, hi);
-            if acc == 0 {
-                acc = ns;
+            if acc.len == 0 {
+                acc = self.claim(ns);
                 continue;
             }
-            let sum_at = scaled_at + ns;
-            let (lo, hi) = self.t.split_at_mut(sum_at);
-            let nr = sum_into(&lo[start..start + acc], &lo[scaled_at..sum_at], false, hi);
-            self.t.copy_within(sum_at..sum_at + nr, start);
-            acc = nr;
+            let scaled = self.claim(ns);
+            acc = self.sum(acc, scaled, false);
         }
-        let n = compress(&mut self.t[start..start + acc]);
-        self.claim(n)
+        let n = compress(&mut self.t[acc.at..acc.at + acc.len]);
+        self.top = acc.at + n;
+        Span { at: acc.at, len: n }
     }
 
     /// `x·y ± z·w`, compressed.
@@ -363,6 +381,29 @@ pub fn incircle_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> f64
 /// approximate magnitude.
 #[inline(never)]
 pub fn orient3d_exact(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
+    // The usual case: every coordinate difference is exact (nearby points), and the
+    // determinant of the rounded differences is the exact one, at most 24 components, so
+    // small stack arrays hold it (Shewchuk's stage B without its error bound).
+    let diff = |p: [f64; 3], k: usize| two_diff(p[k], d[k]);
+    let dd = [a, b, c].map(|p| [0, 1, 2].map(|k| diff(p, k)));
+    if dd.iter().all(|v| v.iter().all(|x| x.1 == 0.0)) {
+        let [[adx, ady, adz], [bdx, bdy, bdz], [cdx, cdy, cdz]] = dd.map(|v| v.map(|x| x.0));
+        let minor = |x: f64, y: f64, z: f64, w: f64, h: f64| {
+            let mut m = [0.0; 4];
+            let n = two_two_diff(x, y, z, w, &mut m);
+            let mut out = [0.0; 8];
+            let n = scale_into(&m[..n], h, &mut out);
+            (out, n)
+        };
+        let (t1, n1) = minor(bdx, cdy, cdx, bdy, adz);
+        let (t2, n2) = minor(cdx, ady, adx, cdy, bdz);
+        let (t3, n3) = minor(adx, bdy, bdx, ady, cdz);
+        let mut s12 = [0.0; 16];
+        let n12 = sum_into(&t1[..n1], &t2[..n2], false, &mut s12);
+        let mut det = [0.0; 24];
+        let n = sum_into(&s12[..n12], &t3[..n3], false, &mut det);
+        return det[..n].last().copied().unwrap_or(0.0);
+    }
     Scratch::with(|s| {
         let [adx, ady, adz] = [0, 1, 2].map(|k| s.diff(a[k], d[k]));
         let [bdx, bdy, bdz] = [0, 1, 2].map(|k| s.diff(b[k], d[k]));

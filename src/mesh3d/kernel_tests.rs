@@ -9,6 +9,7 @@ use super::order::{brio_hilbert_order, hilbert_index_bits};
 use super::store::{in_circumcircle_coplanar, Located, Tets, FACE, GHOST};
 use super::{delaunay3d, TetMesh, NONE};
 use crate::error::{Error, InputError};
+use crate::exact::insphere_exact;
 use crate::predicates::{insphere, insphere_dd, insphere_fast, insphere_small_integers, orient3d};
 
 /// SplitMix64, for reproducible test inputs.
@@ -851,7 +852,8 @@ fn filtered_insphere_agrees_with_the_exact_predicate_near_degeneracy() {
             _ => (7.0, [100.0, -3.0, 12.0]),
         };
         let p: Vec<[f64; 3]> = (0..5).map(|_| sphere(&mut r, rad, c)).collect();
-        let exact = sign(insphere(p[0], p[1], p[2], p[3], p[4]));
+        // The exact stage alone (itself checked against `robust` in tests/predicates_oracle.rs).
+        let exact = sign(insphere_exact(p[0], p[1], p[2], p[3], p[4]));
         assert_eq!(
             sign(insphere_fast(p[0], p[1], p[2], p[3], p[4])),
             exact,
@@ -893,7 +895,8 @@ fn filtered_insphere_agrees_with_the_exact_predicate_near_degeneracy() {
         let p: Vec<[f64; 3]> = (0..5)
             .map(|_| [0, 1, 2].map(|_| off + s * (r.below(9) as f64 - 4.0)))
             .collect();
-        let exact = sign(insphere(p[0], p[1], p[2], p[3], p[4]));
+        // The exact stage alone (itself checked against `robust` in tests/predicates_oracle.rs).
+        let exact = sign(insphere_exact(p[0], p[1], p[2], p[3], p[4]));
         assert_eq!(
             sign(insphere_fast(p[0], p[1], p[2], p[3], p[4])),
             exact,

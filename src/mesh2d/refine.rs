@@ -343,13 +343,40 @@ impl<'a> Refiner<'a> {
     }
 
     /// Splits queued segments until none is left (the recursion of Fig. 2 step 8).
+    ///
+    /// Splits for conformity count against the Steiner budget like any other point (two
+    /// nearly touching features need as many points as their length over their gap): once
+    /// it is spent, a segment that is an edge is left encroached and the run is incomplete
+    /// (the mesh stays constrained Delaunay); a segment that is missing from the mesh is
+    /// still split, as the mesh needs it, under a work budget of its own.
     pub fn drain_splits(&mut self) -> Result<(), Error> {
+        let mut recovery_budget = 4 * self.cdt.segs.len() + 1024;
         while let Some(s) = self.cdt.split_queue.pop() {
             tick(|| (self.steiner(), 0))?;
             self.cdt.seg_queued[s as usize] = false;
+            if self.budget_spent() {
+                let Seg { a, b, .. } = self.cdt.segs[s as usize];
+                if a == NONE || self.cdt.find_edge(a, b).is_some() {
+                    self.complete = false;
+                    continue;
+                }
+                recovery_budget -= 1;
+                if recovery_budget == 0 {
+                    return Err(Error::Internal(
+                        "segment recovery did not finish within its work budget".into(),
+                    ));
+                }
+            }
             self.split_segment(s)?;
         }
         Ok(())
+    }
+
+    /// Whether the Steiner budget ([`Options::max_steiner`], and the vertex-index cap) is
+    /// spent.
+    pub fn budget_spent(&self) -> bool {
+        let cap = self.opts.max_steiner.unwrap_or(u64::MAX);
+        self.steiner() >= cap || self.cdt.pts.len() >= (NONE / 2) as usize
     }
 
     /// Where to split subsegment `ab`: the midpoint, or, when exactly one end is an apex, the
@@ -574,7 +601,6 @@ impl<'a> Refiner<'a> {
             }
         }
         let base = self.n_input + 1;
-        let cap = o.max_steiner.unwrap_or(u64::MAX);
         let mut last_report = 0usize;
         while let Some((t, vs)) = self.pop_bad() {
             tick(|| {
@@ -585,7 +611,7 @@ impl<'a> Refiner<'a> {
                 continue;
             }
             let added = self.cdt.pts.len() - base;
-            if added as u64 >= cap || self.cdt.pts.len() >= (NONE / 2) as usize {
+            if self.budget_spent() {
                 self.complete = false;
                 break;
             }

@@ -10,7 +10,7 @@ use super::store::{
     Cdt, Inserted, Mode, Seg, SegId, Start, TriId, VertexId, EXTERIOR, HOLE, NO_REGION,
 };
 use super::{Options, NONE};
-use crate::error::Error;
+use crate::error::{Error, InputError};
 use crate::geometry::{area2, dist2, min_angle_sin2, steiner_point};
 use crate::input::Pslg;
 use crate::predicates::{encroaches, orient2d};
@@ -427,6 +427,24 @@ impl<'a> Refiner<'a> {
                 {
                     // No split point could separate `c` from the segment in floating point:
                     // `c` is on it, up to rounding (as split points on slanted segments are).
+                    // On the domain's boundary the sliver between `c` and the segment leaves
+                    // the domain (by a few ulps): a boundary edge stays a segment.
+                    if self.cdt.twin(e) == NONE && !self.cdt.peel(e) {
+                        // The sliver has a second boundary edge: `c` is within rounding of
+                        // this segment and of the boundary at one of its ends, closer to
+                        // the corner than floating point can separate.
+                        if (c as usize) < self.n_input && input != NONE {
+                            return Err(InputError::VertexOnSegment {
+                                vertex: c as usize,
+                                segment: input as usize,
+                            }
+                            .into());
+                        }
+                        return Err(Error::Internal(format!(
+                            "vertex {c} lies within rounding of boundary segment ({pa:?}, \
+                             {pb:?}) at a corner of the domain"
+                        )));
+                    }
                     let s2 = self.split_at_vertex(s, c);
                     self.settle(s)?;
                     return self.settle(s2);

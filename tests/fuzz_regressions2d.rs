@@ -136,3 +136,94 @@ fn tiny_segment_scaled_up_is_meshed() {
     let m = mesh(&c).unwrap();
     assert!(m.complete);
 }
+
+/// The letter A of the shared data (`A.poly`, Triangle's example) with `-pc`: the convex
+/// hull's edge from the apex makes a 3.5° angle with the segment there, and the hull
+/// segment's split points were taken for corners (they lie on no input segment, as
+/// crossing points do), so it was split at midpoints instead of on the apex's shells and the
+/// two split each other down to rounding ("splitting segment … LostWalk", issue 14).
+#[test]
+fn letter_a_with_its_convex_hull_is_meshed() {
+    let points = vec![
+        [0.200000, -0.776400],
+        [0.220000, -0.773200],
+        [0.245600, -0.756400],
+        [0.277600, -0.702000],
+        [0.488800, -0.207600],
+        [0.504800, -0.207600],
+        [0.740800, -0.739600],
+        [0.756000, -0.761200],
+        [0.774400, -0.772400],
+        [0.800000, -0.776400],
+        [0.800000, -0.792400],
+        [0.579200, -0.792400],
+        [0.579200, -0.776400],
+        [0.621600, -0.771600],
+        [0.633600, -0.762800],
+        [0.639200, -0.744400],
+        [0.620800, -0.684400],
+        [0.587200, -0.604400],
+        [0.360800, -0.604400],
+        [0.319200, -0.706800],
+        [0.312000, -0.739600],
+        [0.318400, -0.761200],
+        [0.334400, -0.771600],
+        [0.371200, -0.776400],
+        [0.371200, -0.792400],
+        [0.374400, -0.570000],
+        [0.574400, -0.570000],
+        [0.473600, -0.330800],
+        [0.200000, -0.792400],
+    ];
+    let segments: Vec<[u32; 2]> = vec![
+        [28, 0],
+        [0, 1],
+        [1, 2],
+        [2, 3],
+        [3, 4],
+        [4, 5],
+        [5, 6],
+        [6, 7],
+        [7, 8],
+        [8, 9],
+        [9, 10],
+        [10, 11],
+        [11, 12],
+        [12, 13],
+        [13, 14],
+        [14, 15],
+        [15, 16],
+        [16, 17],
+        [17, 18],
+        [18, 19],
+        [19, 20],
+        [20, 21],
+        [21, 22],
+        [22, 23],
+        [23, 24],
+        [24, 28],
+        [25, 26],
+        [26, 27],
+        [27, 25],
+    ];
+    let g = idmesh::Pslg {
+        points,
+        segments,
+        holes: vec![[0.47, -0.5]],
+        ..Default::default()
+    };
+    for min_angle in [None, Some(30.0)] {
+        let opts = idmesh::Options {
+            convex_hull: true,
+            min_angle,
+            ..Default::default()
+        };
+        let m = idmesh::triangulate(&g, &opts).unwrap();
+        m.validate().unwrap();
+        assert!(m.complete);
+        // Without angle bound, far fewer points than a cascade down to rounding.
+        if min_angle.is_none() {
+            assert!(m.steiner_points < 500, "{}", m.steiner_points);
+        }
+    }
+}

@@ -61,6 +61,8 @@ pub(super) struct Refiner<'a> {
     /// Crossing points (from `split_crossings`) lying on each input segment: like shared
     /// endpoints, they are corners that segments radiate from.
     inner_corners: std::collections::HashMap<u32, Vec<u32>>,
+    /// The vertices of `inner_corners`.
+    crossing: std::collections::HashSet<u32>,
     sin2_min: f64,
     off_k: Option<f64>,
     max_area: f64,
@@ -111,6 +113,7 @@ impl<'a> Refiner<'a> {
             n_input: n,
             apex: degree.iter().map(|&d| d >= 2).collect(),
             inner_corners: std::collections::HashMap::new(),
+            crossing: std::collections::HashSet::new(),
             sin2_min,
             off_k,
             max_area: opts.max_area.unwrap_or(f64::INFINITY),
@@ -143,6 +146,7 @@ impl<'a> Refiner<'a> {
         for pc in pieces {
             for v in [pc.a, pc.b] {
                 if v as usize > self.n_input {
+                    self.crossing.insert(v);
                     let list = self.inner_corners.entry(pc.input).or_default();
                     if !list.contains(&v) {
                         list.push(v);
@@ -289,8 +293,7 @@ impl<'a> Refiner<'a> {
             }
         }
         if (v as usize) > self.n_input && self.cdt.vseg[v as usize] == NONE {
-            let crossing = self.inner_corners.values().any(|l| l.contains(&v));
-            if !crossing {
+            if !self.crossing.contains(&v) {
                 self.cdt.vseg[v as usize] = seg.input;
             }
         }
@@ -386,11 +389,15 @@ impl<'a> Refiner<'a> {
         let pb = self.cdt.pts[b as usize];
         // Input vertices shared by segments are apexes; so are crossing points inserted by
         // `split_crossings`: the only Steiner segment endpoints lying on no single segment.
+        // Split points of convex-hull segments (`-c`) lie on no input segment either, but
+        // they are no corners: taking them for apexes would split a hull segment at
+        // midpoints, never on the shells of its apex, and at a sharp angle between the hull
+        // and an input segment the two would split each other down to rounding.
         let apex = |v: u32| {
             if (v as usize) < self.n_input {
                 self.apex[v as usize]
             } else {
-                self.cdt.vseg[v as usize] == NONE
+                self.crossing.contains(&v)
             }
         };
         let (from, to) = match (apex(a), apex(b)) {
@@ -437,6 +444,20 @@ impl<'a> Refiner<'a> {
                             return Err(InputError::VertexOnSegment {
                                 vertex: c as usize,
                                 segment: input as usize,
+                            }
+                            .into());
+                        }
+                        // A split point of another segment: the two segments run within
+                        // rounding of each other near that corner.
+                        let other = self.cdt.vseg[c as usize];
+                        if (c as usize) > self.n_input
+                            && input != NONE
+                            && other != NONE
+                            && other != input
+                        {
+                            return Err(InputError::CrossingSegments {
+                                first: input.min(other) as usize,
+                                second: input.max(other) as usize,
                             }
                             .into());
                         }

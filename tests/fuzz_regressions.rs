@@ -106,7 +106,9 @@ fn segment_hugging_the_boundary_terminates() {
         no_boundary_steiner: false,
     };
     let (tx, rx) = std::sync::mpsc::channel();
-    std::thread::spawn(move || tx.send(case.run()));
+    std::thread::spawn(move || {
+        let _ = tx.send(case.run());
+    });
     let m = rx
         .recv_timeout(std::time::Duration::from_secs(20))
         .expect("no answer within 20 s")

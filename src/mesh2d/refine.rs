@@ -292,10 +292,11 @@ impl<'a> Refiner<'a> {
                 self.queue_new_triangles();
             }
         }
-        if (v as usize) > self.n_input && self.cdt.vseg[v as usize] == NONE {
-            if !self.crossing.contains(&v) {
-                self.cdt.vseg[v as usize] = seg.input;
-            }
+        if (v as usize) > self.n_input
+            && self.cdt.vseg[v as usize] == NONE
+            && !self.crossing.contains(&v)
+        {
+            self.cdt.vseg[v as usize] = seg.input;
         }
         self.cdt.segs[s as usize].b = v;
         let s2 = self.cdt.segs.len() as SegId;

@@ -76,7 +76,7 @@ impl Chains {
             let c = find(&mut parent, s as u32);
             for v in *e {
                 if member.insert((v, c)) {
-                    vat.entry(v).or_insert_with(Vec::new).push(c);
+                    vat.entry(v).or_default().push(c);
                 }
             }
         }

@@ -491,6 +491,21 @@ impl<'a> Refiner<'a> {
                 self.cdt.new_tris.clear();
                 v
             }
+            // The split point, on this segment up to rounding, lies exactly on another one:
+            // the two run within rounding of each other there, closer than floating point
+            // can separate.
+            Inserted::OnSegment(t)
+                if input != NONE
+                    && self.cdt.segs[t as usize].input != NONE
+                    && self.cdt.segs[t as usize].input != input =>
+            {
+                let other = self.cdt.segs[t as usize].input;
+                return Err(InputError::CrossingSegments {
+                    first: input.min(other) as usize,
+                    second: input.max(other) as usize,
+                }
+                .into());
+            }
             other => {
                 return Err(Error::Internal(format!(
                     "splitting segment ({pa:?}, {pb:?}) at {m:?}: {other:?}"

@@ -227,3 +227,28 @@ fn letter_a_with_its_convex_hull_is_meshed() {
         }
     }
 }
+
+/// The square with a hole, a segment of 1e-9 of its size at the hole's corner and one of
+/// 1e-2 at the outer corner (found by the `mesh2d` fuzz target): the local final check
+/// forgave a chain's rounding there, and the mesh, returned as a success, failed the
+/// global empty-circle check. A forgiving local check is now followed by the global one,
+/// so such a mesh is never a success.
+#[test]
+fn forgiven_rounding_never_hides_a_non_delaunay_mesh() {
+    let c = case(
+        219,
+        vec![
+            Tiny {
+                point: 11207,
+                e: 43,
+            },
+            Tiny { point: 43, e: 0 },
+        ],
+        None,
+    );
+    match mesh(&c) {
+        Ok(m) => assert!(m.complete),
+        Err(idmesh::Error::Internal(e)) => assert!(e.contains("output check failed"), "{e}"),
+        Err(e) => panic!("{e}"),
+    }
+}

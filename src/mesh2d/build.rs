@@ -84,7 +84,7 @@ pub(super) fn run_with(
     } else if cfg!(debug_assertions) {
         mesh.validate()
     } else {
-        super::validate::validate_locally(&mesh, false)
+        super::validate::validate_final(&mesh)
     };
     check.map_err(|e| Error::Internal(format!("output check failed: {e}")))?;
     Ok(mesh)

@@ -116,7 +116,23 @@ pub(super) fn validate_constrained(m: &TriMesh) -> Result<(), String> {
 /// this is the cheap exact check every conforming run ends with: it catches a kernel that
 /// lost the Delaunay property, though not a vertex seen only across a hole or the outside.
 pub(super) fn validate_locally(m: &TriMesh, skip_segments: bool) -> Result<(), String> {
+    locally_forgiving(m, skip_segments).map(|_| ())
+}
+
+/// The conforming run's final check: [`validate_locally`], and when it had to forgive the
+/// rounding of a chain (see [`Chains`]) the global empty-circle check as well, since the
+/// local form no longer implies it then.
+pub(super) fn validate_final(m: &TriMesh) -> Result<(), String> {
+    if locally_forgiving(m, false)? > 0 {
+        check_empty_circles(m, &Chains::new(m))?;
+    }
+    Ok(())
+}
+
+/// [`validate_locally`], returning how many locally non-Delaunay edges the chains forgave.
+fn locally_forgiving(m: &TriMesh, skip_segments: bool) -> Result<usize, String> {
     validate_structure(m, true)?;
+    let mut forgiven = 0;
     let chains = Chains::new(m);
     let mut seg: HashMap<(u32, u32), ()> = HashMap::new();
     if skip_segments {
@@ -140,16 +156,18 @@ pub(super) fn validate_locally(m: &TriMesh, skip_segments: bool) -> Result<(), S
                 return Err(format!("triangles {t} and {n} share all their vertices"));
             };
             let [a, b, c] = tri.map(|v| m.vertices[v as usize]);
-            if incircle_fast(a, b, c, m.vertices[far as usize]) > 0.0 && !chains.forgives(*tri, far)
-            {
-                return Err(format!(
-                    "vertex {far} lies inside the circumcircle of triangle {t} across edge \
-                     ({p}, {q})"
-                ));
+            if incircle_fast(a, b, c, m.vertices[far as usize]) > 0.0 {
+                if !chains.forgives(*tri, far) {
+                    return Err(format!(
+                        "vertex {far} lies inside the circumcircle of triangle {t} across \
+                         edge ({p}, {q})"
+                    ));
+                }
+                forgiven += 1;
             }
         }
     }
-    Ok(())
+    Ok(forgiven)
 }
 
 /// Everything but the empty-circle check: indices, orientation, subsegments, and with

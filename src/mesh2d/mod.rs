@@ -73,10 +73,12 @@ pub struct Options {
     /// (Triangle's `-c`). Without segments the convex hull is always meshed. Default: `false`.
     pub convex_hull: bool,
     /// Maximum number of Steiner points (Triangle's `-S<n>`). When reached, refinement stops and
-    /// the mesh is returned with [`TriMesh::complete`] set to `false`. The cap is checked before
-    /// each skinny or oversized triangle is split; the segment splits that one split triggers
-    /// always finish (so segments stay conforming), which can add a few points beyond the cap.
-    /// Default: `None` (no cap other than an internal safety cap of 2^31 vertices).
+    /// the mesh is returned with [`TriMesh::complete`] set to `false`. The cap counts every
+    /// Steiner point, the segment splits that make segments conforming included: once it is
+    /// reached, segments still encroached are left as they are, and the mesh is constrained
+    /// Delaunay (what [`TriMesh::validate`] checks of an incomplete mesh). A segment missing
+    /// from the mesh is still split until it is present, which can add a few points beyond
+    /// the cap. Default: `None` (no cap other than an internal safety cap of 2^31 vertices).
     pub max_steiner: Option<u64>,
     /// Forbid Steiner points on boundary segments (Triangle's `-Y`): segments with the domain
     /// on one side only (outer boundary, hole boundaries, the hull with `convex_hull`) stay

@@ -29,7 +29,9 @@ pub struct TriMesh {
     pub segments: Vec<[u32; 2]>,
     /// One marker per subsegment (inherited from its input segment).
     pub segment_markers: Vec<i32>,
-    /// `false` when refinement stopped at the Steiner-point cap before meeting every bound.
+    /// `false` when refinement stopped at the Steiner-point cap (or a work budget) before
+    /// meeting every bound; the mesh is then constrained Delaunay, not necessarily
+    /// conforming (see [`TriMesh::validate`]).
     pub complete: bool,
     /// Number of Steiner points added (vertices beyond the input points that are in the mesh).
     pub steiner_points: usize,
@@ -86,7 +88,10 @@ impl TriMesh {
     /// neighbour symmetry, empty circumcircles (against every vertex), and that every
     /// subsegment is a mesh edge. Returns a message naming the first violation.
     ///
-    /// This is the conforming Delaunay rule of the default options. A mesh made with
+    /// This is the conforming Delaunay rule of the default options. An incomplete mesh
+    /// (`complete == false`: the Steiner budget stopped refinement, possibly before every
+    /// encroached segment was split) is checked with the constrained rule of
+    /// [`TriMesh::validate_constrained`], its guarantee. A mesh made with
     /// `Options::no_boundary_steiner` is only constrained Delaunay: check it with
     /// [`TriMesh::validate_constrained`].
     pub fn validate(&self) -> Result<(), String> {

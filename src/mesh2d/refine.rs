@@ -10,7 +10,7 @@ use super::store::{
     Cdt, Inserted, Mode, Seg, SegId, Start, TriId, VertexId, EXTERIOR, HOLE, NO_REGION,
 };
 use super::{Options, NONE};
-use crate::error::Error;
+use crate::error::{Error, InputError};
 use crate::geometry::{area2, dist2, min_angle_sin2, steiner_point};
 use crate::input::Pslg;
 use crate::predicates::{encroaches, orient2d};
@@ -61,6 +61,8 @@ pub(super) struct Refiner<'a> {
     /// Crossing points (from `split_crossings`) lying on each input segment: like shared
     /// endpoints, they are corners that segments radiate from.
     inner_corners: std::collections::HashMap<u32, Vec<u32>>,
+    /// The vertices of `inner_corners`.
+    crossing: std::collections::HashSet<u32>,
     sin2_min: f64,
     off_k: Option<f64>,
     max_area: f64,
@@ -111,6 +113,7 @@ impl<'a> Refiner<'a> {
             n_input: n,
             apex: degree.iter().map(|&d| d >= 2).collect(),
             inner_corners: std::collections::HashMap::new(),
+            crossing: std::collections::HashSet::new(),
             sin2_min,
             off_k,
             max_area: opts.max_area.unwrap_or(f64::INFINITY),
@@ -143,6 +146,7 @@ impl<'a> Refiner<'a> {
         for pc in pieces {
             for v in [pc.a, pc.b] {
                 if v as usize > self.n_input {
+                    self.crossing.insert(v);
                     let list = self.inner_corners.entry(pc.input).or_default();
                     if !list.contains(&v) {
                         list.push(v);
@@ -288,11 +292,11 @@ impl<'a> Refiner<'a> {
                 self.queue_new_triangles();
             }
         }
-        if (v as usize) > self.n_input && self.cdt.vseg[v as usize] == NONE {
-            let crossing = self.inner_corners.values().any(|l| l.contains(&v));
-            if !crossing {
-                self.cdt.vseg[v as usize] = seg.input;
-            }
+        if (v as usize) > self.n_input
+            && self.cdt.vseg[v as usize] == NONE
+            && !self.crossing.contains(&v)
+        {
+            self.cdt.vseg[v as usize] = seg.input;
         }
         self.cdt.segs[s as usize].b = v;
         let s2 = self.cdt.segs.len() as SegId;
@@ -343,13 +347,40 @@ impl<'a> Refiner<'a> {
     }
 
     /// Splits queued segments until none is left (the recursion of Fig. 2 step 8).
+    ///
+    /// Splits for conformity count against the Steiner budget like any other point (two
+    /// nearly touching features need as many points as their length over their gap): once
+    /// it is spent, a segment that is an edge is left encroached and the run is incomplete
+    /// (the mesh stays constrained Delaunay); a segment that is missing from the mesh is
+    /// still split, as the mesh needs it, under a work budget of its own.
     pub fn drain_splits(&mut self) -> Result<(), Error> {
+        let mut recovery_budget = 4 * self.cdt.segs.len() + 1024;
         while let Some(s) = self.cdt.split_queue.pop() {
             tick(|| (self.steiner(), 0))?;
             self.cdt.seg_queued[s as usize] = false;
+            if self.budget_spent() {
+                let Seg { a, b, .. } = self.cdt.segs[s as usize];
+                if a == NONE || self.cdt.find_edge(a, b).is_some() {
+                    self.complete = false;
+                    continue;
+                }
+                recovery_budget -= 1;
+                if recovery_budget == 0 {
+                    return Err(Error::Internal(
+                        "segment recovery did not finish within its work budget".into(),
+                    ));
+                }
+            }
             self.split_segment(s)?;
         }
         Ok(())
+    }
+
+    /// Whether the Steiner budget ([`Options::max_steiner`], and the vertex-index cap) is
+    /// spent.
+    pub fn budget_spent(&self) -> bool {
+        let cap = self.opts.max_steiner.unwrap_or(u64::MAX);
+        self.steiner() >= cap || self.cdt.pts.len() >= (NONE / 2) as usize
     }
 
     /// Where to split subsegment `ab`: the midpoint, or, when exactly one end is an apex, the
@@ -359,11 +390,15 @@ impl<'a> Refiner<'a> {
         let pb = self.cdt.pts[b as usize];
         // Input vertices shared by segments are apexes; so are crossing points inserted by
         // `split_crossings`: the only Steiner segment endpoints lying on no single segment.
+        // Split points of convex-hull segments (`-c`) lie on no input segment either, but
+        // they are no corners: taking them for apexes would split a hull segment at
+        // midpoints, never on the shells of its apex, and at a sharp angle between the hull
+        // and an input segment the two would split each other down to rounding.
         let apex = |v: u32| {
             if (v as usize) < self.n_input {
                 self.apex[v as usize]
             } else {
-                self.cdt.vseg[v as usize] == NONE
+                self.crossing.contains(&v)
             }
         };
         let (from, to) = match (apex(a), apex(b)) {
@@ -400,6 +435,38 @@ impl<'a> Refiner<'a> {
                 {
                     // No split point could separate `c` from the segment in floating point:
                     // `c` is on it, up to rounding (as split points on slanted segments are).
+                    // On the domain's boundary the sliver between `c` and the segment leaves
+                    // the domain (by a few ulps): a boundary edge stays a segment.
+                    if self.cdt.twin(e) == NONE && !self.cdt.peel(e) {
+                        // The sliver has a second boundary edge: `c` is within rounding of
+                        // this segment and of the boundary at one of its ends, closer to
+                        // the corner than floating point can separate.
+                        if (c as usize) < self.n_input && input != NONE {
+                            return Err(InputError::VertexOnSegment {
+                                vertex: c as usize,
+                                segment: input as usize,
+                            }
+                            .into());
+                        }
+                        // A split point of another segment: the two segments run within
+                        // rounding of each other near that corner.
+                        let other = self.cdt.vseg[c as usize];
+                        if (c as usize) > self.n_input
+                            && input != NONE
+                            && other != NONE
+                            && other != input
+                        {
+                            return Err(InputError::CrossingSegments {
+                                first: input.min(other) as usize,
+                                second: input.max(other) as usize,
+                            }
+                            .into());
+                        }
+                        return Err(Error::Internal(format!(
+                            "vertex {c} lies within rounding of boundary segment ({pa:?}, \
+                             {pb:?}) at a corner of the domain"
+                        )));
+                    }
                     let s2 = self.split_at_vertex(s, c);
                     self.settle(s)?;
                     return self.settle(s2);
@@ -423,6 +490,21 @@ impl<'a> Refiner<'a> {
             Inserted::Duplicate(v) if v != a && v != b => {
                 self.cdt.new_tris.clear();
                 v
+            }
+            // The split point, on this segment up to rounding, lies exactly on another one:
+            // the two run within rounding of each other there, closer than floating point
+            // can separate.
+            Inserted::OnSegment(t)
+                if input != NONE
+                    && self.cdt.segs[t as usize].input != NONE
+                    && self.cdt.segs[t as usize].input != input =>
+            {
+                let other = self.cdt.segs[t as usize].input;
+                return Err(InputError::CrossingSegments {
+                    first: input.min(other) as usize,
+                    second: input.max(other) as usize,
+                }
+                .into());
             }
             other => {
                 return Err(Error::Internal(format!(
@@ -574,7 +656,6 @@ impl<'a> Refiner<'a> {
             }
         }
         let base = self.n_input + 1;
-        let cap = o.max_steiner.unwrap_or(u64::MAX);
         let mut last_report = 0usize;
         while let Some((t, vs)) = self.pop_bad() {
             tick(|| {
@@ -585,7 +666,7 @@ impl<'a> Refiner<'a> {
                 continue;
             }
             let added = self.cdt.pts.len() - base;
-            if added as u64 >= cap || self.cdt.pts.len() >= (NONE / 2) as usize {
+            if self.budget_spent() {
                 self.complete = false;
                 break;
             }

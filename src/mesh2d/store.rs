@@ -394,6 +394,38 @@ impl<G: Geometry> Cdt<G> {
         }
     }
 
+    /// Deletes the triangle of half-edge `h`, an open edge of the carved domain, when its
+    /// other two edges are inner edges: they become the open boundary instead (each keeps
+    /// its segment, if any). How a vertex lying within rounding inside a boundary segment
+    /// joins it: the sliver between the vertex and the segment leaves the domain. Returns
+    /// whether it was done.
+    pub fn peel(&mut self, h: u32) -> bool {
+        let t = h / 3;
+        let i = (h % 3) as usize;
+        if self.twin(h) != NONE || !self.alive(t) {
+            return false;
+        }
+        let v = self.tv[t as usize];
+        let (tn, tp) = (self.tn[t as usize][next(i)], self.tn[t as usize][prev(i)]);
+        if tn == NONE || tp == NONE {
+            return false;
+        }
+        for tw in [tn, tp] {
+            self.tn[(tw / 3) as usize][(tw % 3) as usize] = NONE;
+        }
+        // Edge next(i) is opposite v[next(i)]: its far triangle holds v[prev(i)] and v[i].
+        self.vtri[v[i] as usize] = tn / 3;
+        self.vtri[v[prev(i)] as usize] = tn / 3;
+        self.vtri[v[next(i)] as usize] = tp / 3;
+        self.tv[t as usize] = [NONE; 3];
+        self.tn[t as usize] = [NONE; 3];
+        self.free.push(t);
+        if self.hint == t {
+            self.hint = tn / 3;
+        }
+        true
+    }
+
     /// Finds the half-edge from `a` to `b` (or, when only `b → a` exists on an open boundary,
     /// that one) by turning around `a` both ways; `None` if `ab` is no edge.
     pub fn find_edge(&self, a: VertexId, b: VertexId) -> Option<u32> {

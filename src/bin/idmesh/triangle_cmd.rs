@@ -96,10 +96,14 @@ fn run(sw: &Switches, file: &str) -> Result<(), String> {
     let mesh_time = mesh_start.elapsed();
     if !mesh.complete {
         // Printed even with -Q: the files are written but miss the requested bounds.
+        // The budget also stops the splits that make segments conforming.
+        let what = match sw.max_steiner {
+            Some(n) => format!("the Steiner point limit ({n})"),
+            None => "the work budget of segment splitting".to_string(),
+        };
         eprintln!(
-            "idmesh: warning: the Steiner point limit ({}) was reached; some triangles do not \
-             meet the quality bounds",
-            sw.max_steiner.unwrap_or(0)
+            "idmesh: warning: {what} was reached; some triangles do not meet the quality \
+             bounds, or some segments are still encroached (the mesh is constrained Delaunay)"
         );
     }
 
@@ -219,7 +223,7 @@ fn statistics(input: &TriangleInput, mesh: &TriMesh, [read, meshing, write]: [Du
         write.as_secs_f64()
     );
     if !mesh.complete {
-        println!("The Steiner point limit was reached: the mesh is incomplete.");
+        println!("The Steiner point limit or a work budget was reached: the mesh is incomplete.");
     }
 }
 

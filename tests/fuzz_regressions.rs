@@ -52,9 +52,11 @@ fn scaled_cube_with_a_small_facet_terminates() {
         point: 21877,
         e: 169,
     };
-    let scaled = case(vec![tiny.clone(), Scale { e: 66 }]);
+    let scaled = case(vec![tiny, Scale { e: 66 }]);
     let (tx, rx) = std::sync::mpsc::channel();
-    std::thread::spawn(move || tx.send(scaled.run()));
+    std::thread::spawn(move || {
+        let _ = tx.send(scaled.run());
+    });
     let r = rx
         .recv_timeout(std::time::Duration::from_secs(20))
         .expect("no answer within 20 s");
@@ -66,6 +68,41 @@ fn scaled_cube_with_a_small_facet_terminates() {
         (unscaled.vertices.len(), unscaled.tets.len()),
         "scaling by 1e-25 changed the mesh"
     );
+}
+
+/// The cube with a face dropped and two triangles of 1e-7 of its size added 1e-10 apart near
+/// an edge, `-p` with the campaign's Steiner cap of 20,000: found by the 3D campaign (seed 1,
+/// run 11800) running past its 20 s limit, its queue filling with a million subsegments to
+/// check. The Steiner cap now bounds feature recovery as well (its points and its work): the
+/// run ends with an error naming the budget.
+#[test]
+fn near_coincident_tiny_facets_end_within_the_budget() {
+    let case = mutate::Case3 {
+        seed: 156,
+        muts: vec![
+            Drop { item: 17845 },
+            Tiny { point: 9430, e: 89 },
+            Snap { b: 193 },
+            Tiny {
+                point: 52795,
+                e: 137,
+            },
+        ],
+        ratio: None,
+        keep_surface: false,
+    };
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = tx.send(case.run());
+    });
+    let r = rx
+        .recv_timeout(std::time::Duration::from_secs(60))
+        .expect("no answer within 60 s");
+    match r {
+        Ok(m) => m.validate().unwrap(),
+        Err(idmesh::Error::Internal(e)) => assert!(e.contains("work budget"), "{e}"),
+        Err(e) => assert!(matches!(e, idmesh::Error::Input(_)), "{e}"),
+    }
 }
 
 /// The cube with a cubic hole and one point added 1e-11 of the box from a corner, `-pq`: the

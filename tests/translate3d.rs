@@ -55,7 +55,9 @@ fn u_prism(n: usize, shift: f64) -> Plc {
 /// Meshes on a thread, failing the test when no answer comes within 20 s.
 fn mesh_in_time(plc: Plc, opts: Options3) -> Result<TetMesh, idmesh::Error> {
     let (tx, rx) = std::sync::mpsc::channel();
-    std::thread::spawn(move || tx.send(idmesh::tetrahedralize(&plc, &opts)));
+    std::thread::spawn(move || {
+        let _ = tx.send(idmesh::tetrahedralize(&plc, &opts));
+    });
     rx.recv_timeout(Duration::from_secs(20))
         .expect("no answer within 20 s")
 }

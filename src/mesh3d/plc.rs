@@ -102,8 +102,8 @@ struct Mesher<'a> {
     hint: u32,
     num_input: usize,
     steiner: u64,
-    /// Steiner budget of a run that must not run away (see [`mesh_plc`]): quality refinement
-    /// stops there, and feature recovery fails at twice as many.
+    /// Steiner budget: quality refinement stops there, and feature recovery fails at twice as
+    /// many (the caller's cap, or the budget of a second run in [`mesh_plc`]).
     hard_cap: u64,
     complete: bool,
     /// Small input angles (see [`Sharp`]): tets touching them are exempt from the
@@ -205,7 +205,9 @@ fn mesh_plc_in(
         hint: NONE,
         num_input: n,
         steiner: 0,
-        hard_cap,
+        // The caller's Steiner cap bounds feature recovery too (at twice the cap), so that no
+        // input (two facets 1e-11 apart asking for 1e8 points) can keep a capped run going.
+        hard_cap: hard_cap.min(opts.max_steiner.unwrap_or(u64::MAX)),
         complete: true,
         sharp: Sharp::default(),
         face_region: Vec::new(),
@@ -541,7 +543,11 @@ impl Mesher<'_> {
         let budget = 1u64 << 40;
         for it in 0..budget {
             tick(|| (self.steiner, self.steiner + self.queued()))?;
-            if self.steiner / 2 > self.hard_cap {
+            // Recovering the features costs a few queue entries per split point; 16 per point
+            // of the budget bounds the work of a run whose queue fills with subsegments that
+            // are fine (two facets 1e-10 apart: a million entries for 10k points).
+            let work_cap = self.hard_cap.saturating_add(self.num_input as u64);
+            if self.steiner / 2 > self.hard_cap || (!self.classified && it / 16 > work_cap) {
                 return Err(Error::Internal(format!(
                     "the input's edges and facets were not recovered within {} Steiner points \
                      (work budget)",

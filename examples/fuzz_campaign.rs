@@ -45,14 +45,25 @@ fn outcome<M>(
             Err(e) => format!("WRONG MESH returned as a success: {e}"),
         },
         Err(idmesh::Error::Internal(m)) => {
-            // Group by the message's words, not its numbers.
-            let words: String = m
-                .split(|c: char| c.is_ascii_digit() || c == '[' || c == '(')
-                .next()
-                .unwrap_or("")
-                .chars()
-                .take(70)
-                .collect();
+            // Group by the message's words, not its numbers or lists of ids.
+            let mut words = String::new();
+            let mut depth = 0u32;
+            for c in m.chars() {
+                match c {
+                    '[' | '(' | '{' => depth += 1,
+                    ']' | ')' | '}' => depth = depth.saturating_sub(1),
+                    _ if depth > 0 => {}
+                    c if c.is_ascii_digit()
+                        || (matches!(c, '.' | 'e' | '-') && words.ends_with('N')) =>
+                    {
+                        if !words.ends_with('N') {
+                            words.push('N');
+                        }
+                    }
+                    c => words.push(c),
+                }
+            }
+            let words: String = words.chars().take(110).collect();
             format!("INTERNAL: {}", words.trim())
         }
         Err(idmesh::Error::Input(_)) => "input error".into(),

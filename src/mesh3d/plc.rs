@@ -15,6 +15,7 @@
 use std::collections::VecDeque;
 
 mod flip;
+mod frame;
 pub(super) mod keep;
 pub(super) mod sliver;
 
@@ -101,6 +102,9 @@ struct Mesher<'a> {
     hint: u32,
     num_input: usize,
     steiner: u64,
+    /// Steiner budget: quality refinement stops there, and feature recovery fails at twice as
+    /// many (the caller's cap, or the budget of a second run in [`mesh_plc`]).
+    hard_cap: u64,
     complete: bool,
     /// Small input angles (see [`Sharp`]): tets touching them are exempt from the
     /// radius-edge bound, so refinement cannot chase them forever.
@@ -132,8 +136,36 @@ struct Counts {
     tet_refused: u64,
 }
 
-/// Meshes a PLC (already checked).
+/// Meshes a PLC (already checked); far from the origin, in an exactly shifted frame
+/// (`plc/frame.rs`), and in the caller's frame when the result does not survive the move
+/// back (with a Steiner budget from the first run, so that the second cannot run away).
 pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
+    let Some(s) = frame::shift_of(plc) else {
+        return mesh_plc_in(plc, opts, None, u64::MAX).map(|(m, _)| m.expect("no frame"));
+    };
+    let local = frame::shifted(plc, s);
+    let o = frame::shifted_options(opts, s);
+    let (mesh, steiner) = mesh_plc_in(&local, &o, Some(s), u64::MAX)?;
+    if let Some(mut mesh) = mesh {
+        frame::unshift(&mut mesh, s);
+        if super::validate::validate_mesh(&mesh).is_ok() {
+            return Ok(mesh);
+        }
+    }
+    let cap = steiner.saturating_mul(8).saturating_add(1024);
+    mesh_plc_in(plc, opts, None, cap).map(|(m, _)| m.expect("no frame"))
+}
+
+/// Meshes `plc`; with `frame`, the shift of the caller's frame, whose grid the Steiner points
+/// are moved onto before output (no mesh when a tet turns over). Also returns the number of
+/// Steiner points made. Past `hard_cap` Steiner points, quality refinement stops (the mesh is
+/// incomplete) and feature recovery fails.
+fn mesh_plc_in(
+    plc: &Plc,
+    opts: &Options3,
+    frame: Option<[f64; 3]>,
+    hard_cap: u64,
+) -> Result<(Option<TetMesh>, u64), Error> {
     let feat = Features::new(plc).map_err(Error::Internal)?;
     let n = plc.points.len();
     let mut tets = Tets::with_capacity(n * 4 + 64);
@@ -173,6 +205,9 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
         hint: NONE,
         num_input: n,
         steiner: 0,
+        // The caller's Steiner cap bounds feature recovery too (at twice the cap), so that no
+        // input (two facets 1e-11 apart asking for 1e8 points) can keep a capped run going.
+        hard_cap: hard_cap.min(opts.max_steiner.unwrap_or(u64::MAX)),
         complete: true,
         sharp: Sharp::default(),
         face_region: Vec::new(),
@@ -232,8 +267,13 @@ pub(crate) fn mesh_plc(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
             m.run()?;
         }
     }
+    if let Some(s) = frame {
+        if !m.snap_to_frame(s) {
+            return Ok((None, m.steiner));
+        }
+    }
     stage(Stage::Output, || (0, 4 * m.tets.num_slots() as u64))?;
-    m.output(plc)
+    Ok((Some(m.output(plc)?), m.steiner))
 }
 
 impl Mesher<'_> {
@@ -495,7 +535,7 @@ impl Mesher<'_> {
     }
 
     fn cap_reached(&self) -> bool {
-        self.opts.max_steiner.is_some_and(|c| self.steiner >= c)
+        self.opts.max_steiner.is_some_and(|c| self.steiner >= c) || self.steiner >= self.hard_cap
     }
 
     /// The work loop: subsegments, then subfaces, then tetrahedra (Definition 4.1).
@@ -503,6 +543,17 @@ impl Mesher<'_> {
         let budget = 1u64 << 40;
         for it in 0..budget {
             tick(|| (self.steiner, self.steiner + self.queued()))?;
+            // Recovering the features costs a few queue entries per split point; 16 per point
+            // of the budget bounds the work of a run whose queue fills with subsegments that
+            // are fine (two facets 1e-10 apart: a million entries for 10k points).
+            let work_cap = self.hard_cap.saturating_add(self.num_input as u64);
+            if self.steiner / 2 > self.hard_cap || (!self.classified && it / 16 > work_cap) {
+                return Err(Error::Internal(format!(
+                    "the input's edges and facets were not recovered within {} Steiner points \
+                     (work budget)",
+                    self.steiner
+                )));
+            }
             if self.opts.verbose && it % (1 << 12) == (1 << 12) - 1 {
                 let c = &self.counts;
                 eprintln!(
@@ -654,7 +705,12 @@ impl Mesher<'_> {
             _ => return [0, 1, 2].map(|k| 0.5 * (pa[k] + pb[k])),
         };
         let len = crate::geometry::dist2_3(from, to).sqrt();
-        let d = (0.5 * len).log2().round().exp2();
+        // Shells at power-of-two multiples of the input's largest extent, not of the unit of
+        // length: the same split points, relative to the input, at every scale (issue 14).
+        let unit = (0..3)
+            .map(|k| self.bbox[1][k] - self.bbox[0][k])
+            .fold(0.0, f64::max);
+        let d = unit * (0.5 * len / unit).log2().round().exp2();
         let t = (d / len).clamp(0.25, 0.75);
         [0, 1, 2].map(|k| from[k] + (to[k] - from[k]) * t)
     }

@@ -234,6 +234,13 @@ impl Tets {
         id as VertexId
     }
 
+    /// Moves vertex `v` to `p`. The caller keeps the tetrahedralization valid (every real tet
+    /// positively oriented), as `plc/frame.rs` checks after moving Steiner points onto the
+    /// caller's grid.
+    pub fn set_point(&mut self, v: VertexId, p: [f64; 3]) {
+        self.pts[v as usize] = p;
+    }
+
     /// The coordinates of vertex `v` (not [`GHOST`]).
     #[inline]
     pub fn point(&self, v: VertexId) -> [f64; 3] {

@@ -15,6 +15,13 @@ impl Mesher<'_> {
     /// lowers the lifted tetrahedralization, so this ends; a budget guards it anyway. Returns
     /// the number of flips.
     pub(super) fn delaunay_flips(&mut self) -> usize {
+        self.flips(true)
+    }
+
+    /// [`Mesher::delaunay_flips`], with `guard` whether a flip may not make the worst shape
+    /// worse (off: every flip that removes a non-Delaunay face, as after moving points by a
+    /// rounding in `plc/frame.rs`).
+    pub(super) fn flips(&mut self, guard: bool) -> usize {
         let mut stack: Vec<(u32, [u32; 4])> = (0..self.tets.num_slots() as u32)
             .filter(|&t| self.tets.alive(t))
             .map(|t| (t, self.tets.verts(t)))
@@ -29,7 +36,7 @@ impl Mesher<'_> {
                 continue;
             }
             for f in 0..4 {
-                if let Some(new) = self.try_flip(t, f) {
+                if let Some(new) = self.try_flip(t, f, guard) {
                     flips += 1;
                     stack.extend(new.into_iter().map(|u| (u, self.tets.verts(u))));
                     break;
@@ -42,10 +49,10 @@ impl Mesher<'_> {
     /// Flips face `f` of tet `t` if it is not locally Delaunay, not a subface, and a 2-3 flip
     /// (the union of the two tets is convex across it) or a 3-2 flip (an edge of it has exactly
     /// three tets around it, and is no subsegment) can remove it. Returns the new tets.
-    fn try_flip(&mut self, t: u32, f: usize) -> Option<Vec<u32>> {
+    fn try_flip(&mut self, t: u32, f: usize, guard: bool) -> Option<Vec<u32>> {
         let vs = self.tets.verts(t);
         let (n, g) = self.tets.neighbor(t, f);
-        if n == NONE {
+        if n == NONE || self.tets.is_ghost(t) || self.tets.is_ghost(n) {
             return None;
         }
         let [a, b, c] = FACE[f].map(|k| vs[k]);
@@ -66,7 +73,7 @@ impl Mesher<'_> {
                 .iter()
                 .map(|&(x, y)| positive([d, e, x, y], &p))
                 .collect();
-            return self.commit_flip(&[t, n], &new, reg);
+            return self.commit_flip(&[t, n], &new, reg, guard);
         }
         // 3-2: an edge xy of abc around which t, n and one more tet (x, y, d, e) are all.
         let mut cands: Vec<(u32, [[u32; 4]; 2])> = Vec::new();
@@ -90,21 +97,27 @@ impl Mesher<'_> {
         }
         cands
             .into_iter()
-            .find_map(|(m, new)| self.commit_flip(&[t, n, m], &new, reg))
+            .find_map(|(m, new)| self.commit_flip(&[t, n, m], &new, reg, guard))
     }
 
     /// Replaces `old` by `new` (checked exactly by [`crate::mesh3d::store::Tets::replace`])
     /// unless that makes the worst of their shapes worse: Delaunay flips among nearly
     /// coplanar surface vertices would otherwise glue flat tets onto the surface. The new tets
     /// get region `reg`.
-    fn commit_flip(&mut self, old: &[u32], new: &[[u32; 4]], reg: u32) -> Option<Vec<u32>> {
+    fn commit_flip(
+        &mut self,
+        old: &[u32],
+        new: &[[u32; 4]],
+        reg: u32,
+        guard: bool,
+    ) -> Option<Vec<u32>> {
         let shape = |q: [u32; 4]| crate::geometry::tet_shape(q.map(|v| self.pts[v as usize]));
         let before = old
             .iter()
             .map(|&t| shape(self.tets.verts(t)))
             .fold(f64::INFINITY, f64::min);
         let after = new.iter().map(|&q| shape(q)).fold(f64::INFINITY, f64::min);
-        if after < before {
+        if guard && after < before {
             return None;
         }
         let ids = self.tets.replace(old, new, &[]).ok()?;

@@ -15,7 +15,7 @@ use crate::hash::FastMap as HashMap;
 use super::super::features::{ekey, Features};
 use super::super::Options3;
 
-/// The bounds per facet and per input edge of one run (squared, to compare without roots).
+/// The bounds per facet and per input edge of one run, squared.
 #[derive(Default)]
 pub(super) struct Limits {
     /// Per facet (the mesher's numbering): the squared maximum area, or infinity.
@@ -69,19 +69,10 @@ impl Limits {
             .is_some_and(|&l2| l2.is_finite() && crate::geometry::dist2_3(pa, pb) > l2)
     }
 
-    /// Whether subface `abc` of facet `f` has a larger area than its bound.
+    /// Whether subface `c` of facet `f` has a larger area than its bound.
     pub fn face_too_large(&self, f: u32, c: [[f64; 3]; 3]) -> bool {
-        let Some(&a2) = self.face_area2.get(f as usize).filter(|a| a.is_finite()) else {
-            return false;
-        };
-        let u = [0, 1, 2].map(|k| c[1][k] - c[0][k]);
-        let v = [0, 1, 2].map(|k| c[2][k] - c[0][k]);
-        let n = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
-        // |n| is twice the area.
-        (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) > 4.0 * a2
+        self.face_area2.get(f as usize).is_some_and(|&a2| {
+            a2.is_finite() && crate::geometry::tri_area3(c[0], c[1], c[2]).powi(2) > a2
+        })
     }
 }

@@ -250,6 +250,7 @@ void apply(tetgenbehavior *b, const idm_tetgen_switches &w) {
   b->insertaddpoints = w.insert_points;
   b->metric = w.metric;
   b->order = w.order2 ? 2 : 1;
+  b->convex = w.convex_hull;
 }
 
 // The user's tetunsuitable as idmesh's sizing callback. A C++ exception it throws must not

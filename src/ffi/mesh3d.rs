@@ -1309,6 +1309,51 @@ mod tests {
     }
 
     #[test]
+    fn convex_hull_and_constraint_options_are_validated_and_copied() {
+        let mut m = Handle::new();
+        let mut o = options(0.0, -1.0);
+        let facets = [1.0, 0.5, 3.0, 0.25];
+        let segs = [0.0, 1.0, 0.1];
+        o.convex_hull = 1;
+        o.facet_constraints = facets.as_ptr();
+        o.num_facet_constraints = 2;
+        o.segment_constraints = segs.as_ptr();
+        o.num_segment_constraints = 1;
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
+        let h = &m.get_mut().opts;
+        assert!(h.convex_hull);
+        assert_eq!(h.facet_max_area, vec![(1, 0.5), (3, 0.25)]);
+        assert_eq!(h.segment_max_length, vec![([0, 1], 0.1)]);
+        for (f, s, needle) in [
+            ([1.5, 0.5, 3.0, 0.25], [0.0, 1.0, 0.1], "marker"),
+            ([1.0, -0.5, 3.0, 0.25], [0.0, 1.0, 0.1], "area"),
+            ([1.0, 0.5, 3.0, 0.25], [-1.0, 1.0, 0.1], "endpoint"),
+            ([1.0, 0.5, 3.0, 0.25], [0.0, 1.0, f64::NAN], "length"),
+        ] {
+            let mut bad = o;
+            bad.facet_constraints = f.as_ptr();
+            bad.segment_constraints = s.as_ptr();
+            assert_eq!(
+                unsafe { idm_mesher3d_set_options(m.0, &bad) },
+                IDM_ERR_INVALID_ARGUMENT
+            );
+            assert!(last_error().contains(needle), "{}", last_error());
+        }
+        let mut null = o;
+        null.facet_constraints = std::ptr::null();
+        assert_eq!(
+            unsafe { idm_mesher3d_set_options(m.0, &null) },
+            IDM_ERR_NULL_POINTER
+        );
+        // A struct of 0.2.0's size gets the defaults: no hull, no constraints.
+        let mut old = o;
+        old.struct_size = <idm_options3d as SizedOptions>::BASELINE;
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &old) }, IDM_OK);
+        let h = &m.get_mut().opts;
+        assert!(!h.convex_hull && h.facet_max_area.is_empty() && h.segment_max_length.is_empty());
+    }
+
+    #[test]
     fn min_dihedral_option_removes_slivers_and_old_structs_get_the_default() {
         let o = options(1.414, 0.0005);
         assert_eq!(o.min_dihedral, crate::mesh3d::DEFAULT_MIN_DIHEDRAL);

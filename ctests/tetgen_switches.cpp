@@ -9,7 +9,11 @@
 //       (linear in x, so its linear interpolation is exact) at its centroid;
 //   point attributes (linear in the coordinates) are reproduced at every output point;
 //   e   edgelist lists every edge of the tetrahedra once;
-//   X   is accepted.
+//   X   is accepted;
+//   facetconstraintlist / segmentconstraintlist: every boundary face of the bounded marker is
+//       within its area bound and every piece of the bounded segment within its length bound,
+//       while other faces are not forced below them; a bad bound throws 10;
+//   c   an L-shaped prism is meshed to its convex hull (volume 3.5 instead of 3).
 #include <tetgen.h>
 
 #include <algorithm>
@@ -215,8 +219,118 @@ static void test_metric_and_attributes() {
         "e: every edge of the tetrahedra, once");
 }
 
+static double tri_area(const REAL *a, const REAL *b, const REAL *c) {
+  double u[3], v[3];
+  for (int k = 0; k < 3; k++) {
+    u[k] = b[k] - a[k];
+    v[k] = c[k] - a[k];
+  }
+  double n0 = u[1] * v[2] - u[2] * v[1], n1 = u[2] * v[0] - u[0] * v[2], n2 = u[0] * v[1] - u[1] * v[0];
+  return 0.5 * std::sqrt(n0 * n0 + n1 * n1 + n2 * n2);
+}
+
+static void test_constraints(int firstnumber) {
+  tetgenio in, out;
+  cube(in);
+  if (firstnumber == 1) {
+    in.firstnumber = 1;
+    for (int f = 0; f < in.numberoffacets; f++)
+      for (int k = 0; k < 4; k++) in.facetlist[f].polygonlist[0].vertexlist[k] += 1;
+  }
+  // Marker 1 is the face z = 0; points 1 and 3 (0-based) the edge x = 1, z = 0.
+  in.numberoffacetconstraints = 1;
+  in.facetconstraintlist = new REAL[2];
+  in.facetconstraintlist[0] = 1;
+  in.facetconstraintlist[1] = 0.01;
+  in.numberofsegmentconstraints = 1;
+  in.segmentconstraintlist = new REAL[3];
+  in.segmentconstraintlist[0] = 1 + firstnumber;
+  in.segmentconstraintlist[1] = 3 + firstnumber;
+  in.segmentconstraintlist[2] = 0.05;
+  tetrahedralize((char *)"pqQ", &in, &out);
+  double bounded = 0, other = 0, piece = 0, top_piece = 0;
+  for (int f = 0; f < out.numberoftrifaces; f++) {
+    const int *v = &out.trifacelist[3 * f];
+    double a = tri_area(pt(out, v[0]), pt(out, v[1]), pt(out, v[2]));
+    if (out.trifacemarkerlist[f] == 1)
+      bounded = std::max(bounded, a);
+    else
+      other = std::max(other, a);
+    for (int i = 0; i < 3; i++) {
+      const REAL *p = pt(out, v[i]), *q = pt(out, v[(i + 1) % 3]);
+      if (p[0] == 1 && q[0] == 1 && p[2] == q[2] && (p[2] == 0 || p[2] == 1)) {
+        double &slot = p[2] == 0 ? piece : top_piece;
+        slot = std::max(slot, dist(p, q));
+      }
+    }
+  }
+  check(bounded > 0 && bounded <= 0.01, "facetconstraintlist: faces of marker 1 within 0.01");
+  check(other > 0.01, "facetconstraintlist: other markers are not forced below the bound");
+  check(piece > 0 && piece <= 0.05, "segmentconstraintlist: pieces of the edge within 0.05");
+  check(top_piece > 0.05, "segmentconstraintlist: other edges are not forced below it");
+
+  tetgenio bad, out2;
+  cube(bad);
+  bad.numberoffacetconstraints = 1;
+  bad.facetconstraintlist = new REAL[2];
+  bad.facetconstraintlist[0] = 1;
+  bad.facetconstraintlist[1] = -1;
+  int code = 0;
+  try {
+    tetrahedralize((char *)"pqQ", &bad, &out2);
+  } catch (int c) {
+    code = c;
+  }
+  check(code == 10, "a negative facet area bound throws 10");
+}
+
+// An L-shaped prism (the square [0,2]^2 minus [1,2]^2, z from 0 to 1) meshed with and without c.
+static void test_convex() {
+  const double l[6][2] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  double vol[2];
+  for (int c = 0; c < 2; c++) {
+    tetgenio in, out;
+    in.firstnumber = 0;
+    in.numberofpoints = 12;
+    in.pointlist = new REAL[36];
+    for (int i = 0; i < 12; i++) {
+      in.pointlist[3 * i] = l[i % 6][0];
+      in.pointlist[3 * i + 1] = l[i % 6][1];
+      in.pointlist[3 * i + 2] = i / 6;
+    }
+    in.numberoffacets = 8;
+    in.facetlist = new tetgenio::facet[8];
+    for (int f = 0; f < 8; f++) {
+      tetgenio::facet *fa = &in.facetlist[f];
+      tetgenio::init(fa);
+      fa->numberofpolygons = 1;
+      fa->polygonlist = new tetgenio::polygon[1];
+      tetgenio::polygon *p = &fa->polygonlist[0];
+      tetgenio::init(p);
+      p->numberofvertices = f < 2 ? 6 : 4;
+      p->vertexlist = new int[p->numberofvertices];
+      if (f < 2) {
+        for (int k = 0; k < 6; k++) p->vertexlist[k] = 6 * f + k;
+      } else {
+        int i = f - 2, j = (i + 1) % 6;
+        p->vertexlist[0] = i;
+        p->vertexlist[1] = j;
+        p->vertexlist[2] = j + 6;
+        p->vertexlist[3] = i + 6;
+      }
+    }
+    tetrahedralize((char *)(c ? "pcQ" : "pQ"), &in, &out);
+    vol[c] = total_volume(out);
+  }
+  check(std::fabs(vol[0] - 3) < 1e-12, "without c the L prism has volume 3");
+  check(std::fabs(vol[1] - 3.5) < 1e-12, "c: the mesh fills the convex hull (volume 3.5)");
+}
+
 int main() {
   try {
+    test_constraints(0);
+    test_constraints(1);
+    test_convex();
     test_order2();
     test_refine();
     test_insert();

@@ -478,6 +478,38 @@ typedef struct idm_options3d {
    * unchanged), then the Steiner points; error indices name the input's items. Default 0.
    */
   int32_t surface_input;
+  /**
+   * Mesh the convex hull of the points (TetGen's `-c`): the hull's faces are added as
+   * facets with marker 0, and the input's facets and segments inside the hull stay as
+   * internal constraints; hole and region seeds apply as usual. Default 0. Added after
+   * 0.2.0, like the four fields below: a caller's older struct gets the defaults.
+   */
+  int32_t convex_hull;
+  /**
+   * Maximum subface areas per facet marker, as TetGen's `facetconstraintlist`:
+   * `num_facet_constraints` pairs (marker, maximum area) of doubles; every output face on a
+   * facet with that marker is split until its area is at most the bound. Markers must be
+   * whole numbers, areas positive. Copied by `idm_mesher3d_set_options`. Not applied with
+   * `keep_surface`. NULL when the count is 0. Default NULL.
+   */
+  const double *facet_constraints;
+  /**
+   * Number of pairs in `facet_constraints`. Default 0.
+   */
+  size_t num_facet_constraints;
+  /**
+   * Maximum subsegment lengths per input edge, as TetGen's `segmentconstraintlist`:
+   * `num_segment_constraints` triples (point a, point b, maximum length) of doubles with
+   * 0-based point indices; the input edge (free segment or facet polygon edge) with exactly
+   * these endpoints is split until every piece is at most the bound long (pairs naming no
+   * input edge are ignored, as in TetGen). Indices must be whole numbers, lengths positive.
+   * Copied by `idm_mesher3d_set_options`. NULL when the count is 0. Default NULL.
+   */
+  const double *segment_constraints;
+  /**
+   * Number of triples in `segment_constraints`. Default 0.
+   */
+  size_t num_segment_constraints;
 } idm_options3d;
 
 /**
@@ -641,6 +673,10 @@ typedef struct idm_tetgen_switches {
    * `o2`: second-order (10-node) tetrahedra.
    */
   int32_t order2;
+  /**
+   * `c`: mesh the convex hull of the input, keeping the PLC inside it.
+   */
+  int32_t convex_hull;
 } idm_tetgen_switches;
 
 /**
@@ -760,8 +796,8 @@ typedef struct idm_tetgen_items_view {
    */
   size_t count;
   /**
-   * Indices per item: 4 for `.ele` (the corners of 10-node files too), 3 for `.face`, 0
-   * for `.vol` and `.mtr`.
+   * Indices per item: 4 for `.ele` (the corners of 10-node files too), 3 for `.face`, 2
+   * for `.var` segment constraints, 0 for `.vol`, `.mtr` and `.var` facet constraints.
    */
   size_t per_item;
   /**
@@ -777,11 +813,12 @@ typedef struct idm_tetgen_items_view {
    */
   const double *attributes;
   /**
-   * One marker per item (`.face` with markers), else NULL.
+   * One marker per item (`.face` with markers; `.var` facet constraints), else NULL.
    */
   const int32_t *markers;
   /**
-   * One value per item (`.vol`: maximum volume; `.mtr`: size), else NULL.
+   * One value per item (`.vol`: maximum volume; `.mtr`: size; `.var`: maximum area or
+   * length), else NULL.
    */
   const double *values;
 } idm_tetgen_items_view;
@@ -1562,6 +1599,24 @@ enum idm_status idm_tetgen_extra_set_mesh(struct idm_tetgen_extra *e,
                                           uint32_t base);
 
 /**
+ * Gives TetGen's facet and segment constraints: `facets` holds `num_facets` pairs (facet
+ * marker, maximum area) and `segments` holds `num_segments` triples (endpoint, endpoint,
+ * maximum length), points numbered from `base`, all doubles as in `tetgenio`'s
+ * `facetconstraintlist` and `segmentconstraintlist` (NULL with a count of 0). They are
+ * applied by `idm_mesher3d_tetgen` when the switches refine (`q` or `a`), as in TetGen.
+ * Markers and indices must be whole numbers, bounds positive. Replaces what was given before.
+ *
+ * # Safety
+ * Every non-NULL pointer valid for the stated number of values.
+ */
+enum idm_status idm_tetgen_extra_set_constraints(struct idm_tetgen_extra *e,
+                                                 const double *facets,
+                                                 size_t num_facets,
+                                                 const double *segments,
+                                                 size_t num_segments,
+                                                 uint32_t base);
+
+/**
  * Gives the points to insert with `i` (TetGen's `addin->pointlist`): `num_points` points of
  * 3 doubles. Replaces what was given before.
  *
@@ -1618,7 +1673,9 @@ enum idm_status idm_tetgen_extra_output(const struct idm_tetgen_extra *e,
 /**
  * Reads a TetGen mesh file with idmesh's readers: `kind` 0 an `.ele` file, 1 a `.face`
  * file, 2 a `.vol` file (`num_tets` lines), 3 an `.mtr` file (`num_points` lines, one size
- * each); indices refer to `num_points` points numbered from `base` (0 or 1). Errors name the
+ * each), 4 the facet constraints of a `.var` file (`markers` and `values`: marker and
+ * maximum area per constraint), 5 its segment constraints (2 `indices` and one `values`,
+ * the maximum length, per constraint); indices refer to `num_points` points numbered from `base` (0 or 1). Errors name the
  * file and line.
  *
  * # Safety

@@ -167,6 +167,11 @@ pub fn tri_circumcenter3(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Option<[f64; 
     p.is_finite().then(|| p.to_array())
 }
 
+/// Area of the 3D triangle `abc`.
+pub fn tri_area3(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
+    0.5 * (v3(b) - v3(a)).cross(v3(c) - v3(a)).length()
+}
+
 /// Squared distance between two points.
 pub fn dist2_3(a: [f64; 3], b: [f64; 3]) -> f64 {
     v3(a).distance_squared(v3(b))

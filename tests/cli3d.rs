@@ -197,7 +197,7 @@ fn bad_switches_exit_1_with_a_message_naming_them_and_write_nothing() {
     d.example("3d_cube.poly");
     for (args, needle) in [
         (vec!["-pqx", "3d_cube.poly"], "-x"),
-        (vec!["-pc", "3d_cube.poly"], "convex hull"),
+        (vec!["-pw", "3d_cube.poly"], "weighted"),
         (vec!["-po3", "3d_cube.poly"], "-o3"),
         (vec!["-rq", "3d_cube"], "3d_cube.node"),
         (vec!["-pa0", "3d_cube.poly"], "greater than zero"),

@@ -250,6 +250,7 @@ void apply(tetgenbehavior *b, const idm_tetgen_switches &w) {
   b->insertaddpoints = w.insert_points;
   b->metric = w.metric;
   b->order = w.order2 ? 2 : 1;
+  b->convex = w.convex_hull;
 }
 
 // The user's tetunsuitable as idmesh's sizing callback. A C++ exception it throws must not
@@ -358,6 +359,12 @@ void load_extra(idm_tetgen_extra *e, const idm_tetgen_switches &w, const tetgeni
         tets && src->tetrahedronlist != nullptr ? count(src->numberoftetrahedra) : 0,
         count(src->numberofcorners), src->firstnumber == 1 ? 1 : 0));
   }
+  if (in->numberoffacetconstraints > 0 || in->numberofsegmentconstraints > 0)
+    check(idm_tetgen_extra_set_constraints(
+        e, in->facetconstraintlist,
+        in->facetconstraintlist != nullptr ? count(in->numberoffacetconstraints) : 0,
+        in->segmentconstraintlist,
+        in->segmentconstraintlist != nullptr ? count(in->numberofsegmentconstraints) : 0, b));
   if (in->numberofpointattributes > 0 && in->pointattributelist != nullptr)
     check(idm_tetgen_extra_set_point_attributes(e, in->pointattributelist,
                                                 count(in->numberofpoints),
@@ -676,23 +683,12 @@ bool tetgenbehavior::parse_commandline(int argc, char **argv) {
 }
 
 bool tetgenio::load_node(char *name) { return read_with(this, name, ".node"); }
-bool tetgenio::load_poly(char *name) {
-  std::string p = name;
-  if (has_suffix(p, ".poly") || has_suffix(p, ".smesh")) return read_into(this, p);
-  FILE *f = fopen((p + ".poly").c_str(), "r");
-  if (f != nullptr) {
-    fclose(f);
-    return read_into(this, p + ".poly");
-  }
-  return read_into(this, p + ".smesh");
-}
 bool tetgenio::load_off(char *name) { return read_with(this, name, ".off"); }
 bool tetgenio::load_ply(char *name) { return read_with(this, name, ".ply"); }
 bool tetgenio::load_stl(char *name) { return read_with(this, name, ".stl"); }
 bool tetgenio::load_medit(char *name, int) { return read_with(this, name, ".mesh"); }
 bool tetgenio::load_vtk(char *name) { return refuse_load("VTK", name); }
 bool tetgenio::load_edge(char *name) { return refuse_load(".edge", name); }
-bool tetgenio::load_var(char *name) { return refuse_load(".var", name); }
 
 namespace {
 struct Items {
@@ -723,6 +719,46 @@ bool exists(const char *name, const char *ext) {
   return f != nullptr;
 }
 }  // namespace
+
+// The .poly (else .smesh) file, and as TetGen the constraints of a .var file beside it.
+bool tetgenio::load_poly(char *name) {
+  std::string p = name;
+  std::string stem = p;
+  bool ok;
+  if (has_suffix(p, ".poly") || has_suffix(p, ".smesh")) {
+    stem.resize(p.rfind('.'));
+    ok = read_into(this, p);
+  } else {
+    ok = read_into(this, exists(name, ".poly") ? p + ".poly" : p + ".smesh");
+  }
+  if (!ok || !exists(stem.c_str(), ".var")) return ok;
+  std::vector<char> buf(stem.begin(), stem.end());
+  buf.push_back('\0');
+  return load_var(buf.data());
+}
+
+// Facet constraints (marker, maximum area) and segment constraints (two points numbered from
+// firstnumber, maximum length), read by idmesh's .var reader.
+bool tetgenio::load_var(char *name) {
+  Items f, g;
+  if (!read_items(this, name, ".var", 4, f) || !read_items(this, name, ".var", 5, g)) return false;
+  delete[] facetconstraintlist;
+  delete[] segmentconstraintlist;
+  numberoffacetconstraints = (int)f.v.count;
+  facetconstraintlist = new_array<REAL>(2 * f.v.count);
+  for (size_t i = 0; i < f.v.count; i++) {
+    facetconstraintlist[2 * i] = f.v.markers[i];
+    facetconstraintlist[2 * i + 1] = f.v.values[i];
+  }
+  numberofsegmentconstraints = (int)g.v.count;
+  segmentconstraintlist = new_array<REAL>(3 * g.v.count);
+  for (size_t i = 0; i < g.v.count; i++) {
+    segmentconstraintlist[3 * i] = g.v.indices[2 * i];
+    segmentconstraintlist[3 * i + 1] = g.v.indices[2 * i + 1];
+    segmentconstraintlist[3 * i + 2] = g.v.values[i];
+  }
+  return true;
+}
 
 bool tetgenio::load_tet(char *name) {
   Items it;
@@ -781,7 +817,8 @@ bool tetgenio::load_pbc(char *name) { return refuse_load(".pbc", name); }
 
 bool tetgenio::load_plc(char *name, int object) {
   std::string p = name;
-  for (const char *ext : {".node", ".poly", ".smesh", ".off", ".ply", ".stl", ".mesh"})
+  if (has_suffix(p, ".poly") || has_suffix(p, ".smesh")) return load_poly(name);
+  for (const char *ext : {".node", ".off", ".ply", ".stl", ".mesh"})
     if (has_suffix(p, ext)) return read_into(this, p);
   switch (object) {
   case tetgenbehavior::NODES:
@@ -947,12 +984,6 @@ void tetrahedralize(tetgenbehavior *b, tetgenio *in, tetgenio *out, tetgenio *ad
   idm_tetgen_switches w;
   if (idm_tetgen_parse_switches(text.c_str(), &w) != IDM_OK) fail(10, quiet0);
   const bool quiet = w.quiet != 0;
-  if (in->numberoffacetconstraints > 0 || in->numberofsegmentconstraints > 0) {
-    idm_tetgen_report(
-        "facet and segment constraints (facetconstraintlist, segmentconstraintlist) are not "
-        "supported by idmesh");
-    fail(10, quiet);
-  }
   try {
     Mesher mh;
     load_input(mh, in, quiet);

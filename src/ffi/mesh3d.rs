@@ -18,6 +18,7 @@ use super::common::{
 use crate::input3d::{Facet, Plc, Region3};
 use crate::mesh3d::{delaunay3d, tetrahedralize, Options3, SizingFn3, TetMesh};
 use crate::progress::observe;
+use crate::switches::tetgen_extra::tetgen_constraints;
 
 /// 3D meshing options. Fill it with `idm_options3d_default` first, then change what you need,
 /// so that code keeps working if fields are ever appended. Booleans are `int32_t`: 0 is false,
@@ -64,6 +65,28 @@ pub struct idm_options3d {
     /// The output vertices are then the kept input points in input order (coordinates
     /// unchanged), then the Steiner points; error indices name the input's items. Default 0.
     pub surface_input: i32,
+    /// Mesh the convex hull of the points (TetGen's `-c`): the hull's faces are added as
+    /// facets with marker 0, and the input's facets and segments inside the hull stay as
+    /// internal constraints; hole and region seeds apply as usual. Default 0. Added after
+    /// 0.2.0, like the four fields below: a caller's older struct gets the defaults.
+    pub convex_hull: i32,
+    /// Maximum subface areas per facet marker, as TetGen's `facetconstraintlist`:
+    /// `num_facet_constraints` pairs (marker, maximum area) of doubles; every output face on a
+    /// facet with that marker is split until its area is at most the bound. Markers must be
+    /// whole numbers, areas positive. Copied by `idm_mesher3d_set_options`. Not applied with
+    /// `keep_surface`. NULL when the count is 0. Default NULL.
+    pub facet_constraints: *const f64,
+    /// Number of pairs in `facet_constraints`. Default 0.
+    pub num_facet_constraints: usize,
+    /// Maximum subsegment lengths per input edge, as TetGen's `segmentconstraintlist`:
+    /// `num_segment_constraints` triples (point a, point b, maximum length) of doubles with
+    /// 0-based point indices; the input edge (free segment or facet polygon edge) with exactly
+    /// these endpoints is split until every piece is at most the bound long (pairs naming no
+    /// input edge are ignored, as in TetGen). Indices must be whole numbers, lengths positive.
+    /// Copied by `idm_mesher3d_set_options`. NULL when the count is 0. Default NULL.
+    pub segment_constraints: *const f64,
+    /// Number of triples in `segment_constraints`. Default 0.
+    pub num_segment_constraints: usize,
 }
 
 /// Quality figures of the current mesh (see `idm_mesher3d_stats`).
@@ -167,7 +190,8 @@ pub unsafe extern "C" fn idm_options3d_default_sized(out: *mut idm_options3d, st
     unsafe { init_options(out, struct_size) }
 }
 
-// SAFETY: `#[repr(C)]`, `struct_size: usize` first, only integer and float fields.
+// SAFETY: `#[repr(C)]`, `struct_size: usize` first, only integer, float and raw pointer fields
+// (every bit pattern valid; the pointers are checked and read only by `set_options`).
 unsafe impl SizedOptions for idm_options3d {
     /// The 0.2.0 struct ended before `min_dihedral`.
     const BASELINE: usize = std::mem::offset_of!(idm_options3d, min_dihedral);
@@ -188,6 +212,11 @@ unsafe impl SizedOptions for idm_options3d {
                 .min_dihedral
                 .unwrap_or(crate::mesh3d::DEFAULT_MIN_DIHEDRAL),
             surface_input: d.surface_input.into(),
+            convex_hull: d.convex_hull.into(),
+            facet_constraints: std::ptr::null(),
+            num_facet_constraints: 0,
+            segment_constraints: std::ptr::null(),
+            num_segment_constraints: 0,
         }
     }
 }
@@ -419,6 +448,17 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
                 ("max_volume", o.max_volume),
                 ("min_dihedral", o.min_dihedral),
             ])?;
+            let facets = input_slice(
+                o.facet_constraints,
+                scaled(o.num_facet_constraints, 2, "num_facet_constraints")?,
+                "opts.facet_constraints",
+            )?;
+            let segments = input_slice(
+                o.segment_constraints,
+                scaled(o.num_segment_constraints, 3, "num_segment_constraints")?,
+                "opts.segment_constraints",
+            )?;
+            let bounds = tetgen_constraints(facets, segments, 0).map_err(Failure::invalid)?;
             m.opts = Options3 {
                 radius_edge: positive(o.radius_edge),
                 max_volume: positive(o.max_volume),
@@ -432,6 +472,9 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
                 verbose: o.verbose != 0,
                 min_dihedral: Some(o.min_dihedral),
                 surface_input: o.surface_input != 0,
+                convex_hull: o.convex_hull != 0,
+                facet_max_area: bounds.facet_max_area,
+                segment_max_length: bounds.segment_max_length,
             };
             Ok(())
         })
@@ -1263,6 +1306,51 @@ mod tests {
         assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
         assert_eq!(m.get().opts.max_steiner, None);
         assert_eq!(m.get().opts.max_volume, Some(0.25));
+    }
+
+    #[test]
+    fn convex_hull_and_constraint_options_are_validated_and_copied() {
+        let mut m = Handle::new();
+        let mut o = options(0.0, -1.0);
+        let facets = [1.0, 0.5, 3.0, 0.25];
+        let segs = [0.0, 1.0, 0.1];
+        o.convex_hull = 1;
+        o.facet_constraints = facets.as_ptr();
+        o.num_facet_constraints = 2;
+        o.segment_constraints = segs.as_ptr();
+        o.num_segment_constraints = 1;
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
+        let h = &m.get_mut().opts;
+        assert!(h.convex_hull);
+        assert_eq!(h.facet_max_area, vec![(1, 0.5), (3, 0.25)]);
+        assert_eq!(h.segment_max_length, vec![([0, 1], 0.1)]);
+        for (f, s, needle) in [
+            ([1.5, 0.5, 3.0, 0.25], [0.0, 1.0, 0.1], "marker"),
+            ([1.0, -0.5, 3.0, 0.25], [0.0, 1.0, 0.1], "area"),
+            ([1.0, 0.5, 3.0, 0.25], [-1.0, 1.0, 0.1], "endpoint"),
+            ([1.0, 0.5, 3.0, 0.25], [0.0, 1.0, f64::NAN], "length"),
+        ] {
+            let mut bad = o;
+            bad.facet_constraints = f.as_ptr();
+            bad.segment_constraints = s.as_ptr();
+            assert_eq!(
+                unsafe { idm_mesher3d_set_options(m.0, &bad) },
+                IDM_ERR_INVALID_ARGUMENT
+            );
+            assert!(last_error().contains(needle), "{}", last_error());
+        }
+        let mut null = o;
+        null.facet_constraints = std::ptr::null();
+        assert_eq!(
+            unsafe { idm_mesher3d_set_options(m.0, &null) },
+            IDM_ERR_NULL_POINTER
+        );
+        // A struct of 0.2.0's size gets the defaults: no hull, no constraints.
+        let mut old = o;
+        old.struct_size = <idm_options3d as SizedOptions>::BASELINE;
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &old) }, IDM_OK);
+        let h = &m.get_mut().opts;
+        assert!(!h.convex_hull && h.facet_max_area.is_empty() && h.segment_max_length.is_empty());
     }
 
     #[test]

@@ -27,7 +27,7 @@ use crate::input3d::check_plc;
 use crate::io::exchange::Format;
 use crate::io::tetgen::read_input;
 use crate::switches::tetgen::{parse_string, renumber, resolve, write_outputs, TetSwitches};
-use crate::switches::tetgen_extra::{mesh_for, Extra, GivenMesh, Metric, Post};
+use crate::switches::tetgen_extra::{mesh_for, tetgen_constraints, Extra, GivenMesh, Metric, Post};
 
 /// TetGen's switches as parsed by `idm_tetgen_parse_switches` (the letter of each field is in
 /// its comment). Booleans are `int32_t`, 0 false.
@@ -88,6 +88,8 @@ pub struct idm_tetgen_switches {
     pub metric: i32,
     /// `o2`: second-order (10-node) tetrahedra.
     pub order2: i32,
+    /// `c`: mesh the convex hull of the input, keeping the PLC inside it.
+    pub convex_hull: i32,
 }
 
 impl From<&TetSwitches> for idm_tetgen_switches {
@@ -122,6 +124,7 @@ impl From<&TetSwitches> for idm_tetgen_switches {
             insert_points: s.insert_points.into(),
             metric: s.metric.into(),
             order2: s.order2.into(),
+            convex_hull: s.convex_hull.into(),
         }
     }
 }
@@ -167,6 +170,7 @@ impl idm_tetgen_switches {
             insert_points: self.insert_points != 0,
             metric: self.metric != 0,
             order2: self.order2 != 0,
+            convex_hull: self.convex_hull != 0,
         })
     }
 }
@@ -758,6 +762,43 @@ pub unsafe extern "C" fn idm_tetgen_extra_set_mesh(
     })
 }
 
+/// Gives TetGen's facet and segment constraints: `facets` holds `num_facets` pairs (facet
+/// marker, maximum area) and `segments` holds `num_segments` triples (endpoint, endpoint,
+/// maximum length), points numbered from `base`, all doubles as in `tetgenio`'s
+/// `facetconstraintlist` and `segmentconstraintlist` (NULL with a count of 0). They are
+/// applied by `idm_mesher3d_tetgen` when the switches refine (`q` or `a`), as in TetGen.
+/// Markers and indices must be whole numbers, bounds positive. Replaces what was given before.
+///
+/// # Safety
+/// Every non-NULL pointer valid for the stated number of values.
+#[no_mangle]
+pub unsafe extern "C" fn idm_tetgen_extra_set_constraints(
+    e: *mut idm_tetgen_extra,
+    facets: *const f64,
+    num_facets: usize,
+    segments: *const f64,
+    num_segments: usize,
+    base: u32,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let e = unsafe { e.as_mut() }.ok_or_else(|| Failure::null("e"))?;
+        let f = unsafe { input_slice(facets, scaled(num_facets, 2, "num_facets")?, "facets") }?;
+        let s = unsafe {
+            input_slice(
+                segments,
+                scaled(num_segments, 3, "num_segments")?,
+                "segments",
+            )
+        }?;
+        if base > 1 {
+            return Err(Failure::invalid(format!("base is {base}, must be 0 or 1")));
+        }
+        e.input.bounds = tetgen_constraints(f, s, base).map_err(Failure::invalid)?;
+        Ok(())
+    })
+}
+
 /// Gives the points to insert with `i` (TetGen's `addin->pointlist`): `num_points` points of
 /// 3 doubles. Replaces what was given before.
 ///
@@ -929,8 +970,8 @@ pub struct idm_tetgen_items {
 pub struct idm_tetgen_items_view {
     /// Number of items (tetrahedra, faces, volume bounds or sizes).
     pub count: usize,
-    /// Indices per item: 4 for `.ele` (the corners of 10-node files too), 3 for `.face`, 0
-    /// for `.vol` and `.mtr`.
+    /// Indices per item: 4 for `.ele` (the corners of 10-node files too), 3 for `.face`, 2
+    /// for `.var` segment constraints, 0 for `.vol`, `.mtr` and `.var` facet constraints.
     pub per_item: usize,
     /// The indices, numbered from the `base` given to `idm_tetgen_read_items`.
     pub indices: *const i32,
@@ -938,15 +979,18 @@ pub struct idm_tetgen_items_view {
     pub num_attributes: usize,
     /// `num_attributes` per item.
     pub attributes: *const f64,
-    /// One marker per item (`.face` with markers), else NULL.
+    /// One marker per item (`.face` with markers; `.var` facet constraints), else NULL.
     pub markers: *const i32,
-    /// One value per item (`.vol`: maximum volume; `.mtr`: size), else NULL.
+    /// One value per item (`.vol`: maximum volume; `.mtr`: size; `.var`: maximum area or
+    /// length), else NULL.
     pub values: *const f64,
 }
 
 /// Reads a TetGen mesh file with idmesh's readers: `kind` 0 an `.ele` file, 1 a `.face`
 /// file, 2 a `.vol` file (`num_tets` lines), 3 an `.mtr` file (`num_points` lines, one size
-/// each); indices refer to `num_points` points numbered from `base` (0 or 1). Errors name the
+/// each), 4 the facet constraints of a `.var` file (`markers` and `values`: marker and
+/// maximum area per constraint), 5 its segment constraints (2 `indices` and one `values`,
+/// the maximum length, per constraint); indices refer to `num_points` points numbered from `base` (0 or 1). Errors name the
 /// file and line.
 ///
 /// # Safety
@@ -960,7 +1004,7 @@ pub unsafe extern "C" fn idm_tetgen_read_items(
     base: u32,
     out: *mut *mut idm_tetgen_items,
 ) -> idm_status {
-    use crate::io::tetgen::{parse_ele, parse_face, parse_mtr, parse_vol};
+    use crate::io::tetgen::{parse_ele, parse_face, parse_mtr, parse_var, parse_vol};
     guard(|| {
         // SAFETY (all blocks here): the caller's contract, checked as far as possible.
         let path = unsafe { c_str(path, "path") }?;
@@ -995,7 +1039,18 @@ pub unsafe extern "C" fn idm_tetgen_read_items(
             }
             2 => items.values = parse_vol(&text, path, num_tets).map_err(bad)?,
             3 => items.values = parse_mtr(&text, path, num_points).map_err(bad)?,
-            k => return Err(Failure::invalid(format!("kind {k} is not 0, 1, 2 or 3"))),
+            4 => {
+                let v = parse_var(&text, path, base, num_points).map_err(bad)?;
+                items.markers = v.facets.iter().map(|c| c.0).collect();
+                items.values = v.facets.iter().map(|c| c.1).collect();
+            }
+            5 => {
+                let v = parse_var(&text, path, base, num_points).map_err(bad)?;
+                items.per_item = 2;
+                items.indices = v.segments.iter().flat_map(|c| c.0).map(shift).collect();
+                items.values = v.segments.iter().map(|c| c.1).collect();
+            }
+            k => return Err(Failure::invalid(format!("kind {k} is not 0 to 5"))),
         }
         unsafe { out.write(Box::into_raw(Box::new(items))) };
         Ok(())
@@ -1090,9 +1145,10 @@ mod tests {
             panic!("to_switches failed")
         };
         assert_eq!(idm_tetgen_switches::from(&back), s);
-        let (st, msg) = parse("pqc").unwrap_err();
+        assert_eq!(parse("pqc").unwrap().convex_hull, 1);
+        let (st, msg) = parse("pqw").unwrap_err();
         assert_eq!(st, idm_status::IDM_ERR_UNSUPPORTED);
-        assert!(msg.contains("-c"), "{msg}");
+        assert!(msg.contains("-w"), "{msg}");
         let (st, msg) = parse("pq#").unwrap_err();
         assert_eq!(st, idm_status::IDM_ERR_INVALID_ARGUMENT);
         assert!(msg.contains("-#"), "{msg}");

@@ -49,6 +49,15 @@ use crate::error::{Error, InputError, MAX_COORD};
 use crate::mesh3d::NONE;
 use crate::predicates::orient3d;
 
+pub(crate) use cdt::FacetTriangulation;
+
+/// Each facet's region as triangles on its own vertices (global point indices) and the facet
+/// of each triangle, as the checks see it; the PLC must have passed [`check_plc`].
+pub(crate) fn facet_regions(plc: &Plc) -> Result<(Vec<[u32; 3]>, Vec<u32>), Error> {
+    let f = facets::triangulate_facets(plc)?;
+    Ok((f.tris, f.tri_facet))
+}
+
 /// Checks a PLC and reports the first problem found, naming the offending item.
 pub fn check_plc(plc: &Plc) -> Result<(), Error> {
     // A bug must never take the host down: a panic becomes `Error::Internal`.

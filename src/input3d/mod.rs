@@ -6,7 +6,7 @@
 mod check;
 
 pub use check::check_plc;
-pub(crate) use check::{by_coordinates, check_items};
+pub(crate) use check::{by_coordinates, check_items, facet_regions, FacetTriangulation};
 
 /// A planar facet: one or more vertex loops in one plane, as in TetGen's `.poly` facets.
 ///

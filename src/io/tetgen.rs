@@ -33,7 +33,7 @@ pub use super::surface_read::{
 pub use super::tetgen_input::TetgenInput;
 pub use super::tetgen_read::{
     parse_edge, parse_ele, parse_face, parse_mtr, parse_neigh, parse_node, parse_poly, parse_smesh,
-    parse_vol, read_node, read_poly, read_smesh, EleData3, Simplices,
+    parse_var, parse_vol, read_node, read_poly, read_smesh, EleData3, Simplices, VarData,
 };
 pub use super::tetgen_write::{
     all_edges, write_all_edges, write_all_faces, write_edge, write_ele, write_ele_with, write_face,

@@ -584,6 +584,66 @@ pub fn parse_vol(text: &str, file: &str, num_tets: usize) -> Result<Vec<f64>, Pa
     Ok(out)
 }
 
+/// TetGen's `.var` file: facet constraints (marker, maximum area) and segment constraints
+/// (0-based endpoints, maximum length).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct VarData {
+    /// Per facet constraint: the facet marker and the maximum subface area.
+    pub facets: Vec<(i32, f64)>,
+    /// Per segment constraint: the endpoints (0-based) and the maximum subsegment length.
+    pub segments: Vec<([u32; 2], f64)>,
+}
+
+/// Parses a `.var` file (TetGen's variant constraints): `<#facet constraints>`, then
+/// `<#> <facet marker> <maximum area>` per constraint, then `<#segment constraints>` and
+/// `<#> <point> <point> <maximum length>` per constraint, the points numbered from `base`
+/// among `num_points`. The segment part may be missing. Bounds must be positive.
+pub fn parse_var(
+    text: &str,
+    file: &str,
+    base: u32,
+    num_points: usize,
+) -> Result<VarData, ParseError> {
+    let mut recs = Records::new(text, file);
+    let mut rec = recs.record();
+    let mut out = VarData::default();
+    recs.require(&mut rec, || "the line '<#facet constraints>'".into())?;
+    rec.at_most(1, "the facet constraint count")?;
+    let n = rec.count(0, "facet constraint count")?;
+    let positive = |rec: &Record<'_>, i: usize, what: &str| -> Result<f64, ParseError> {
+        let v = rec.f64(i, what)?;
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(rec.error(format!("{what} {v} must be a positive number")))
+        }
+    };
+    for k in 0..n {
+        recs.require(&mut rec, || format!("facet constraint {} of {n}", k + 1))?;
+        rec.at_most(3, "a facet constraint line")?;
+        let marker = rec
+            .marker(1, "facet marker")?
+            .ok_or_else(|| rec.error("missing facet marker"))?;
+        out.facets
+            .push((marker, positive(&rec, 2, "maximum area")?));
+    }
+    if !recs.next_into(&mut rec) {
+        return Ok(out);
+    }
+    rec.at_most(1, "the segment constraint count")?;
+    let n = rec.count(0, "segment constraint count")?;
+    for k in 0..n {
+        recs.require(&mut rec, || format!("segment constraint {} of {n}", k + 1))?;
+        rec.at_most(4, "a segment constraint line")?;
+        let a = index(&rec, rec.int(1, "endpoint")?, base, num_points, "endpoint")?;
+        let b = index(&rec, rec.int(2, "endpoint")?, base, num_points, "endpoint")?;
+        out.segments
+            .push(([a, b], positive(&rec, 3, "maximum length")?));
+    }
+    expect_end(&mut recs, &mut rec, "the constraints declared")?;
+    Ok(out)
+}
+
 /// Parses an `.mtr` file (TetGen's sizes at points for `-m`): `<#points> <#values per
 /// point>`, then one line of values per point. Only one value per point (an isotropic size)
 /// is supported. It must have `num_points` lines.

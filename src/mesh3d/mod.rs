@@ -7,6 +7,7 @@
 //! and regions by flooding up to facets; then remove skinny and oversized tetrahedra (Fig. 9),
 //! then slivers (`plc/sliver.rs`), keeping the mesh Delaunay.
 
+mod convex_hull;
 mod coplanar;
 mod delaunay;
 mod facet_mesh;
@@ -98,6 +99,22 @@ pub struct Options3 {
     /// then the Steiner points. The C API's `surface_input`; Rust callers who want the
     /// warnings and the vertex map call [`repair_surface`] themselves. Default: `false`.
     pub surface_input: bool,
+    /// Mesh the convex hull of the input points (TetGen's `-c`): the hull's faces are added
+    /// as facets with marker 0 (see the `convex_hull` module's docs), so the input facets and
+    /// segments inside the hull stay in the mesh as internal constraints; hole and region
+    /// seeds apply as usual. Default: `false`.
+    pub convex_hull: bool,
+    /// Maximum subface area per facet marker (TetGen's `facetconstraintlist`, `.var` files):
+    /// every output face on a facet with that marker is split until its area is at most the
+    /// bound. Bounds must be positive; the smallest applies when a marker is listed twice.
+    /// Not applied with `keep_surface`. Default: empty.
+    pub facet_max_area: Vec<(i32, f64)>,
+    /// Maximum subsegment length per input edge given by its two endpoints, 0-based point
+    /// indices (TetGen's `segmentconstraintlist`): the edge (a free segment or a facet polygon
+    /// edge with exactly these endpoints) is split until every piece is at most the bound long.
+    /// Bounds must be positive; pairs naming no input edge are ignored, as in TetGen. Not
+    /// applied with `keep_surface`. Default: empty.
+    pub segment_max_length: Vec<([u32; 2], f64)>,
 }
 
 impl fmt::Debug for Options3 {
@@ -115,6 +132,9 @@ impl fmt::Debug for Options3 {
             .field("verbose", &self.verbose)
             .field("min_dihedral", &self.min_dihedral)
             .field("surface_input", &self.surface_input)
+            .field("convex_hull", &self.convex_hull)
+            .field("facet_max_area", &self.facet_max_area)
+            .field("segment_max_length", &self.segment_max_length)
             .finish()
     }
 }
@@ -141,6 +161,20 @@ pub fn tetrahedralize(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
             stage(Stage::Reading, || (0, plc.points.len() as u64))?;
             crate::input3d::check_plc(plc)?;
             check_options(opts)?;
+            let hulled = if opts.convex_hull {
+                let h = convex_hull::with_hull_facets(plc)?;
+                crate::input3d::check_plc(&h).map_err(|e| {
+                    Error::InvalidOption(format!(
+                        "-c: the input with its convex hull's faces added is not a valid PLC \
+                         (facets numbered from {} are hull faces): {e}",
+                        plc.facets.len()
+                    ))
+                })?;
+                Some(h)
+            } else {
+                None
+            };
+            let plc = hulled.as_ref().unwrap_or(plc);
             let merged = (opts.merge_coplanar && !opts.keep_surface)
                 .then(|| coplanar::merge_coplanar_facets(plc))
                 .flatten();
@@ -178,6 +212,24 @@ fn check_options(opts: &Options3) -> Result<(), Error> {
                 plc::sliver::MAX_MIN_DIHEDRAL
             )));
         }
+    }
+    if let Some(&(m, a)) = opts
+        .facet_max_area
+        .iter()
+        .find(|(_, a)| !(a.is_finite() && *a > 0.0))
+    {
+        return Err(Error::InvalidOption(format!(
+            "maximum area {a} of facets with marker {m} must be a positive number"
+        )));
+    }
+    if let Some(&([a, b], l)) = opts
+        .segment_max_length
+        .iter()
+        .find(|(_, l)| !(l.is_finite() && *l > 0.0))
+    {
+        return Err(Error::InvalidOption(format!(
+            "maximum length {l} of segment {a}-{b} must be a positive number"
+        )));
     }
     if let Some(v) = opts.max_volume {
         if !(v.is_finite() && v > 0.0) {

@@ -14,6 +14,7 @@
 
 use std::collections::VecDeque;
 
+mod constraints;
 mod flip;
 mod frame;
 pub(super) mod keep;
@@ -117,6 +118,8 @@ struct Mesher<'a> {
     scratch_new: Vec<u32>,
     /// What the Steiner points were made for, for the progress lines of `-V`.
     counts: Counts,
+    /// Facet area and segment length bounds.
+    limits: constraints::Limits,
 }
 
 /// Steiner point counts by cause, reported in verbose progress lines.
@@ -172,6 +175,7 @@ fn mesh_plc_in(
     for &p in &plc.points {
         tets.push_vertex(p);
     }
+    let limits = constraints::Limits::new(opts, &feat);
     let fmesh = feat
         .facets
         .iter()
@@ -215,6 +219,7 @@ fn mesh_plc_in(
         scratch_faces: Vec::new(),
         scratch_new: Vec::new(),
         counts: Counts::default(),
+        limits,
     };
     m.sharp = Sharp::find(plc, &m.feat, opts.radius_edge);
     stage(Stage::Delaunay, || (0, n as u64))?;
@@ -648,7 +653,7 @@ impl Mesher<'_> {
         let Some(e) = self.feat.subseg(a, b) else {
             return Ok(());
         };
-        if !force && !self.subseg_needs_split(a, b, e) {
+        if !force && !self.subseg_needs_split(a, b, e) && !self.seg_over_bound(a, b, e) {
             return Ok(());
         }
         if force && self.below_floor(&[self.pts[a as usize], self.pts[b as usize]]) {
@@ -688,6 +693,19 @@ impl Mesher<'_> {
         }
         self.insert3d(m, false)
             .map_err(|_| Error::Internal(format!("segment split point {m} refused")))
+    }
+
+    /// Whether subsegment `ab` of input edge `e` exceeds its length bound (and is above the
+    /// size floor).
+    fn seg_over_bound(&self, a: u32, b: u32, e: u32) -> bool {
+        let (pa, pb) = (self.pts[a as usize], self.pts[b as usize]);
+        self.limits.seg_too_long(e, pa, pb) && !self.below_floor(&[pa, pb])
+    }
+
+    /// Whether subface `v` of facet `fid` exceeds its area bound (and is above the size floor).
+    fn face_over_bound(&self, v: [u32; 3], fid: u32) -> bool {
+        let c = v.map(|x| self.pts[x as usize]);
+        self.limits.face_too_large(fid, c) && !self.below_floor(&c)
     }
 
     /// Where to split subsegment `ab`: the midpoint, or, when exactly one end is an input vertex
@@ -740,7 +758,7 @@ impl Mesher<'_> {
         if self.feat.subface(v) != Some(fid) {
             return Ok(());
         }
-        if !force && !self.subface_needs_split(v) {
+        if !force && !self.subface_needs_split(v) && !self.face_over_bound(v, fid) {
             return Ok(());
         }
         let [a, b, c] = v.map(|x| self.pts[x as usize]);

@@ -83,6 +83,8 @@ pub struct TetSwitches {
     pub metric: bool,
     /// `o2`: second-order (10-node) tetrahedra.
     pub order2: bool,
+    /// `c`: mesh the convex hull of the input, keeping the PLC inside it.
+    pub convex_hull: bool,
     /// `k` (VTK), `g` (Medit), and on the command line `--format NAME`: further output files
     /// in these exchange formats.
     pub formats: Vec<Format>,
@@ -105,7 +107,6 @@ pub enum Parsed {
 /// TetGen switches that idmesh recognises but does not implement, with what they do.
 fn unsupported(c: char) -> Option<&'static str> {
     Some(match c {
-        'c' => "retaining the convex hull of the PLC",
         'T' => "a coplanarity tolerance (idmesh decides coplanarity exactly)",
         'w' => "weighted Delaunay triangulations",
         'R' => "reversing tetrahedron orientation",
@@ -227,6 +228,7 @@ pub fn parse_group(arg: &str, sw: &mut TetSwitches) -> Result<(), String> {
             'Q' => sw.quiet = true,
             'V' => sw.verbose = true,
             'M' => sw.no_merge = true,
+            'c' => sw.convex_hull = true,
             'k' => add_format(sw, Format::Vtk),
             'g' => add_format(sw, Format::Medit),
             // What idmesh always does: conforming Delaunay output (D, with TetGen's optional
@@ -442,6 +444,7 @@ impl TetSwitches {
             keep_surface: self.keep_surface,
             merge_coplanar: !self.no_merge,
             verbose: self.verbose && !self.quiet,
+            convex_hull: self.convex_hull,
             ..Options3::default()
         }
     }
@@ -652,8 +655,10 @@ mod tests {
     fn unsupported_and_unknown_switches_are_errors_naming_them() {
         let (s, _) = run(&["-pY", "x"]).unwrap();
         assert!(s.keep_surface && s.plc);
-        let e = run(&["-pc", "x"]).unwrap_err();
-        assert!(e.contains("-c") && e.contains("convex hull"), "{e}");
+        let (s, _) = run(&["-pc", "x"]).unwrap();
+        assert!(s.convex_hull && s.options().convex_hull);
+        let e = run(&["-pw", "x"]).unwrap_err();
+        assert!(e.contains("-w") && e.contains("weighted"), "{e}");
         let e = run(&["-p1.5", "x"]).unwrap_err();
         assert!(e.contains("-p"), "{e}");
         let e = run(&["-pqx", "x"]).unwrap_err();
@@ -689,8 +694,9 @@ mod tests {
         let s = parse_string("-pn -V").unwrap();
         assert!(s.neighbors && !s.face_adjacency && s.verbose);
         assert_eq!(parse_string("").unwrap(), TetSwitches::default());
-        let e = parse_string("pqc").unwrap_err();
-        assert!(e.contains("-c"), "{e}");
+        let e = parse_string("pqR").unwrap_err();
+        assert!(e.contains("-R"), "{e}");
+        assert!(parse_string("pqc").unwrap().convex_hull);
         assert!(parse_string("a1").unwrap().plc, "a<volume> implies q and p");
     }
 

@@ -26,6 +26,10 @@
 //! * Point attributes are interpolated linearly at Steiner points in the same background
 //!   tetrahedra (the given mesh with `r`, else the Delaunay tetrahedralization of the input
 //!   points), and at `o2` edge nodes as the mean of the edge's ends.
+//! * Facet and segment constraints (`facetconstraintlist`, `segmentconstraintlist`, a `.var`
+//!   file beside a PLC file) become [`Options3::facet_max_area`] and
+//!   [`Options3::segment_max_length`], applied as TetGen applies them: when the mesh is
+//!   refined (`q`, or `a`).
 //! * `o2`: six nodes per tetrahedron at the midpoints of its edges, shared between
 //!   tetrahedra, numbered after the mesh's vertices, in the order TetGen 1.5 writes them: on the
 //!   edges (2,3), (0,3), (0,1), (1,2), (1,3), (0,2) of the corners 0..3.
@@ -81,6 +85,65 @@ pub struct Extra {
     pub num_point_attributes: usize,
     /// `num_point_attributes` per input point.
     pub point_attributes: Vec<f64>,
+    /// Facet and segment constraints (`.var`, `facetconstraintlist`, `segmentconstraintlist`).
+    pub bounds: SurfaceBounds,
+}
+
+/// TetGen's facet constraints (maximum area per facet marker) and segment constraints
+/// (maximum length per input edge, 0-based endpoints), as [`Options3`] takes them.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SurfaceBounds {
+    /// See [`Options3::facet_max_area`].
+    pub facet_max_area: Vec<(i32, f64)>,
+    /// See [`Options3::segment_max_length`].
+    pub segment_max_length: Vec<([u32; 2], f64)>,
+}
+
+/// Reads TetGen's `facetconstraintlist` (pairs: marker, maximum area) and
+/// `segmentconstraintlist` (triples: endpoint, endpoint, maximum length; points numbered from
+/// `base`), both arrays of doubles as in `tetgenio`. Markers and indices must be whole numbers
+/// in range, bounds positive; the message names the first bad entry (numbered from 0).
+pub fn tetgen_constraints(
+    facets: &[f64],
+    segments: &[f64],
+    base: u32,
+) -> Result<SurfaceBounds, String> {
+    let whole = |x: f64, lo: f64, hi: f64| x.fract() == 0.0 && x >= lo && x <= hi;
+    let bound = |x: f64| x.is_finite() && x > 0.0;
+    let mut out = SurfaceBounds::default();
+    for (i, c) in facets.chunks_exact(2).enumerate() {
+        if !whole(c[0], i32::MIN as f64, i32::MAX as f64) {
+            return Err(format!(
+                "facet constraint {i}: the marker {} is not a 32-bit whole number",
+                c[0]
+            ));
+        }
+        if !bound(c[1]) {
+            return Err(format!(
+                "facet constraint {i}: the maximum area {} must be a positive number",
+                c[1]
+            ));
+        }
+        out.facet_max_area.push((c[0] as i32, c[1]));
+    }
+    let (lo, hi) = (base as f64, u32::MAX as f64 - 1.0 + base as f64);
+    for (i, c) in segments.chunks_exact(3).enumerate() {
+        if let Some(v) = c[..2].iter().find(|&&v| !whole(v, lo, hi)) {
+            return Err(format!(
+                "segment constraint {i}: the endpoint {v} is not a point index numbered from \
+                 {base}"
+            ));
+        }
+        if !bound(c[2]) {
+            return Err(format!(
+                "segment constraint {i}: the maximum length {} must be a positive number",
+                c[2]
+            ));
+        }
+        let e = [c[0], c[1]].map(|v| (v - base as f64) as u32);
+        out.segment_max_length.push((e, c[2]));
+    }
+    Ok(out)
 }
 
 /// The `o2` output: the edge nodes (numbered after the mesh's vertices) and the 10-node
@@ -159,6 +222,13 @@ pub fn mesh_for(
     }
 
     let plc = work.as_ref().unwrap_or(plc);
+    // TetGen applies the constraints when it refines (`q`, or `a`).
+    if sw.radius_edge.is_some() || sw.region_volume {
+        let b = &extra.bounds;
+        opts.facet_max_area.extend_from_slice(&b.facet_max_area);
+        opts.segment_max_length
+            .extend_from_slice(&b.segment_max_length);
+    }
     if sw.metric {
         let metric = extra.metric.as_ref().ok_or_else(|| {
             Error::InvalidOption(
@@ -687,14 +757,14 @@ fn interpolate_attributes(
 /// `input`), as TetGen's command line finds it: with `r` `FILE.ele` (and `FILE.face`,
 /// `FILE.vol` when present), with `i` `FILE.a.node`, with `m` the background mesh
 /// `FILE.b.node` + `FILE.b.ele` + `FILE.b.mtr` when `FILE.b.node` exists, else `FILE.mtr`
-/// (sizes at the input points); and the input's point attributes. `FILE` is the input path
-/// without its extension.
+/// (sizes at the input points); with a PLC `FILE.var` when present; and the input's point
+/// attributes. `FILE` is the input path without its extension.
 pub fn read_extra(
     sw: &TetSwitches,
     input_path: &str,
     input: &crate::io::tetgen::TetgenInput,
 ) -> Result<Extra, String> {
-    use crate::io::tetgen::{parse_ele, parse_face, parse_mtr, parse_vol, read_node};
+    use crate::io::tetgen::{parse_ele, parse_face, parse_mtr, parse_var, parse_vol, read_node};
     use std::path::Path;
     let path = Path::new(input_path);
     let stem = path.with_extension("");
@@ -739,6 +809,14 @@ pub fn read_extra(
                 parse_vol(&text(&vol)?, &vol, given.tets.len()).map_err(|e| e.to_string())?;
         }
         extra.given = Some(given);
+    }
+    let var = file("var");
+    if (sw.plc || sw.refine) && exists(&var) {
+        let v = parse_var(&text(&var)?, &var, base, np).map_err(|e| e.to_string())?;
+        extra.bounds = SurfaceBounds {
+            facet_max_area: v.facets,
+            segment_max_length: v.segments,
+        };
     }
     if sw.insert_points {
         let a = file("a.node");

@@ -13,7 +13,7 @@ use crate::mesh2d::kernel::{Cdt, Inserted, Recovery, Seg, EXTERIOR, HOLE, NONE, 
 
 /// Why a facet could not be triangulated.
 #[derive(Debug, Clone, PartialEq)]
-pub(super) enum CdtError {
+pub(crate) enum CdtError {
     /// Two constraint edges cross; the tags they were inserted with.
     Crossing(u32, u32),
     /// The kernel failed or a loop ran out of its iteration budget (a bug; never expected).
@@ -22,7 +22,7 @@ pub(super) enum CdtError {
 
 /// A facet's triangulation: the kernel's store, or nothing when the points are collinear.
 #[derive(Default)]
-pub(super) struct FacetTriangulation {
+pub(crate) struct FacetTriangulation {
     cdt: Option<Cdt>,
 }
 

@@ -30,7 +30,7 @@ pub mod exact;
 pub mod ffi;
 pub mod geometry;
 mod hash;
-pub mod input;
+pub mod input2d;
 pub mod input3d;
 pub mod io;
 mod lp;
@@ -45,7 +45,7 @@ pub use error::{Error, InputError};
 /// The "no index" value used in index arrays (for example a missing neighbour), in every
 /// dimension and in the C ABI (`IDM_NONE`).
 pub const NONE: u32 = u32::MAX;
-pub use input::{Pslg, Region};
+pub use input2d::{Pslg, Region};
 pub use input3d::{Facet, Plc, Region3};
 pub use mesh2d::{triangulate, Options, SizingFn, TriMesh};
 pub use mesh3d::{delaunay3d, tetrahedralize, Options3, SizingFn3, TetMesh};

@@ -14,7 +14,7 @@ use super::common::{
     read_options, reject_nan, reserve, run, scaled, set_progress, steiner_cap_to_c, validate,
     CCallback, Failure, Handle, SizedOptions,
 };
-use crate::input::{Pslg, Region};
+use crate::input2d::{Pslg, Region};
 use crate::mesh2d::{triangulate, Options, SizingFn, TriMesh};
 
 /// Meshing options. Fill it with `idm_options2d_default` first, then change what you need, so

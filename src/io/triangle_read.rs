@@ -16,7 +16,7 @@ use std::path::Path;
 
 use super::error::ParseError;
 use super::lines::{capacity, check_attribute_count, read_text, Record, Records};
-use crate::input::{Pslg, Region};
+use crate::input2d::{Pslg, Region};
 
 /// The contents of a Triangle `.node` or `.poly` file.
 #[derive(Debug, Clone, Default, PartialEq)]

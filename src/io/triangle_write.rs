@@ -8,7 +8,7 @@
 use std::io::{self, Write};
 
 use super::numfmt::Out;
-use crate::input::{Pslg, Region};
+use crate::input2d::{Pslg, Region};
 use crate::mesh2d::{TriMesh, NONE};
 
 fn invalid(message: String) -> io::Error {

@@ -6,7 +6,7 @@ use super::refine::{segment_marker, Piece, Refiner, SegmentSteiner};
 use super::store::{Cdt, Inserted, Mode, Seg, Start, EXTERIOR, HOLE, NO_REGION};
 use super::{Options, TriMesh, NONE};
 use crate::error::{Error, InputError};
-use crate::input::Pslg;
+use crate::input2d::Pslg;
 use crate::predicates::{orient2d, strictly_between};
 use crate::progress::{stage, tick, Stage};
 

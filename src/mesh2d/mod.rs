@@ -45,7 +45,7 @@ use std::sync::Arc;
 pub use output::TriMesh;
 
 use crate::error::Error;
-use crate::input::Pslg;
+use crate::input2d::Pslg;
 
 pub use crate::NONE;
 

@@ -12,7 +12,7 @@ use super::store::{
 use super::{Options, NONE};
 use crate::error::{Error, InputError};
 use crate::geometry::{area2, dist2, min_angle_sin2, steiner_point};
-use crate::input::Pslg;
+use crate::input2d::Pslg;
 use crate::predicates::{encroaches, orient2d};
 use crate::progress::{stage, tick, Stage};
 

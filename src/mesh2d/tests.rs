@@ -2,7 +2,7 @@
 #![allow(clippy::field_reassign_with_default)]
 
 use super::*;
-use crate::input::{Pslg, Region};
+use crate::input2d::{Pslg, Region};
 
 fn square_with_hole() -> Pslg {
     let mut p = Pslg::default();

@@ -5,16 +5,10 @@
 //! error, including an internal one (a panic is caught and reported the same way); 130 after
 //! Ctrl-C, which stops a run without leaving output files (see `progress_ui`).
 
-// The crate root sits in src/bin/, so submodules need explicit paths.
-#[path = "idmesh/names.rs"]
 mod names;
-#[path = "idmesh/progress_ui.rs"]
 mod progress_ui;
-#[path = "idmesh/show_cmd.rs"]
 mod show_cmd;
-#[path = "idmesh/tetgen_cmd.rs"]
 mod tetgen_cmd;
-#[path = "idmesh/triangle_cmd.rs"]
 mod triangle_cmd;
 
 use std::ffi::OsString;

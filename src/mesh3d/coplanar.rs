@@ -2,7 +2,8 @@
 //!
 //! A triangulated surface describes each flat face of the object by triangles, and their
 //! shared edges are artefacts of the triangulation, not features: a thin rectangle split along
-//! its diagonal has two 1.5° angles that the rectangle does not have (pipe.off's walls). Kept as
+//! its diagonal has two 1.5° angles that the rectangle does not have (the walls of a
+//! tessellated pipe). Kept as
 //! input edges they must appear in the mesh, and the small angles they make cost protection
 //! zones, skinny tets and many Steiner points. Merged, the face is one polygon facet (the union
 //! of its triangles, its holes and isolated points included) and the shared edges are gone.

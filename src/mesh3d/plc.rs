@@ -56,7 +56,7 @@ enum Why {
     /// was refused for encroaching it, while that tet is in the mesh. One split usually removes
     /// the tet; its other demands are then dropped, and the tets that replaced it are judged
     /// afresh (each encroached simplex split anyway would refine the surface for a tet that is
-    /// gone: pipe.off -pq1.2 made 705k tets that way, 431k without).
+    /// gone: a tessellated pipe at -pq1.2 made 705k tets that way, 431k without).
     ForTet(u32, [u32; 4]),
 }
 
@@ -1509,8 +1509,8 @@ fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
 /// radius-edge ratio large: only a short edge pinned by the small angle excuses the tet (one
 /// ending in the apex's protection ball, one across the wedge between concentric shells, or
 /// one next to a thin wedge). A tet that merely touches a sharp vertex is not excused:
-/// exempting every such tet, however large, left whole inputs unrefined (u.off's triangulated
-/// surface has a sharp vertex almost everywhere).
+/// exempting every such tet, however large, left whole inputs unrefined (a finely triangulated
+/// CAD surface has a sharp vertex almost everywhere).
 #[derive(Default)]
 pub(super) struct Sharp {
     /// Input vertices where two input edges meet below 60° (two edges of one facet: below
@@ -1537,17 +1537,17 @@ pub(super) struct Sharp {
     /// split the edges and tets with a shortest edge ending there are not refined (corner
     /// lopping, as in Pav and Walkington's Delaunay refinement for small angles): below the
     /// theoretical bound (a radius-edge ratio of 2) refinement next to a sharp vertex can
-    /// otherwise run towards it (u.off at -pq1.2: 4,000 tets within 0.02 of one 9-degree corner).
+    /// otherwise run towards it (a triangulated U-shaped part at -pq1.2: 4,000 tets within 0.02 of one 9-degree corner).
     balls: Vec<([f64; 3], f64)>,
 }
 
 /// A thin wedge: two input edges from `apex` to `ends` meeting at an angle whose sine is below
 /// [`THIN_WEDGE`], with its protection zone, the points within `sqrt(r2)` of both edges
-/// (bounding box `lo`, `hi`). The two edges run side by side along their whole length (u.off's
-/// 0.07° needle triangles: two edges 0.04 long never more than 5e-5 apart), so shells near
+/// (bounding box `lo`, `hi`). The two edges run side by side along their whole length (0.07°
+/// needle triangles of a triangulated U-shaped part: two edges 0.04 long never more than 5e-5 apart), so shells near
 /// the apex do not help: everywhere along them, tets join points on both and are as short as
 /// the gap, and refinement would resolve the gap (at about 1/angle tets per doubling of the
-/// distance from the apex, 50,000 tets for u.off) where TetGen just leaves such tets alone. A
+/// distance from the apex, 50,000 tets for that part) where TetGen just leaves such tets alone. A
 /// tet whose shortest edge has an endpoint in the zone is exempt.
 #[derive(Clone, Copy)]
 struct Wedge {
@@ -1560,13 +1560,14 @@ struct Wedge {
 
 /// Sine of the largest angle of a thin wedge: its widest gap (at the end of the shorter edge)
 /// is below a quarter of its zone radius ([`ZONE_FRACTION`] of that edge's length), so at the
-/// zone's scale the two edges are one feature. (About 3.6°: u.off's 0.07° wedges are thin,
-/// its 5.7° surface triangles are not.)
+/// zone's scale the two edges are one feature. (About 3.6°: 0.07° needle wedges are thin,
+/// 5.7° surface triangles are not.)
 const THIN_WEDGE: f64 = ZONE_FRACTION / 4.0;
 
 /// Radius of a sharp vertex's protection ball, relative to the shorter edge of the pair: half
-/// the zone fraction of edges. (A quarter left a tenth of u.off's tets above -pq1.2's bound, an
-/// eighth 4.4 % as TetGen does; a sixteenth let u.off's corners take 1.4x TetGen's tets.)
+/// the zone fraction of edges. (On a triangulated U-shaped part at -pq1.2, a quarter left a tenth of
+/// the tets above the bound, an eighth 4.4 % as TetGen does; a sixteenth let its corners take
+/// 1.4x TetGen's tets.)
 const BALL_FRACTION: f64 = ZONE_FRACTION / 2.0;
 
 /// Relative tolerance of "equal distances from the apex" for points on the two edges of a
@@ -1601,7 +1602,7 @@ impl Wedge {
 /// refused for encroaching the subface iff `√2 ρf > ρ |P1 P2|`, i.e. `sin θ < 1 / (√2 ρ)`.
 /// The subface is then split at `O`, which encroaches both wedge subsegments (the angle
 /// `A O P1` is `180° − θ`); they are split at `r / 2`, and the same tet comes back at half the
-/// size, forever (fandisk.off with `-q1.2`: a 30.1° wedge, a tet of ratio 1.38 at every scale,
+/// size, forever (a CAD fan-disk model with `-q1.2`: a 30.1° wedge, a tet of ratio 1.38 at every scale,
 /// down to subfaces 1e-9 across). At `ρ = √2` this angle is 30°; for `ρ = 1.2`, 36.1°.
 /// Looser bounds (and no bound) keep 30°: a spike's tip is sharp whatever the bound.
 pub(super) fn wedge_sharp_angle(radius_edge: Option<f64>) -> f64 {

@@ -19,8 +19,8 @@ mod output;
 mod plc;
 #[cfg(test)]
 pub(crate) mod plc_tests;
-pub mod store;
-pub mod surface;
+pub(crate) mod store;
+pub(crate) mod surface;
 mod validate;
 
 use std::fmt;

@@ -14,6 +14,7 @@
 
 use std::collections::VecDeque;
 
+mod box_index;
 mod constraints;
 mod flip;
 mod frame;
@@ -1539,6 +1540,10 @@ pub(super) struct Sharp {
     /// theoretical bound (a radius-edge ratio of 2) refinement next to a sharp vertex can
     /// otherwise run towards it (a triangulated U-shaped part at -pq1.2: 4,000 tets within 0.02 of one 9-degree corner).
     balls: Vec<([f64; 3], f64)>,
+    /// `balls` and `wedges` indexed by their boxes (nearly every vertex of a scanned surface
+    /// is sharp: scanning them all for every tet made refinement quadratic).
+    ball_index: box_index::BoxIndex,
+    wedge_index: box_index::BoxIndex,
 }
 
 /// A thin wedge: two input edges from `apex` to `ends` meeting at an angle whose sine is below
@@ -1677,6 +1682,25 @@ impl Sharp {
             .into_iter()
             .map(|(v, r2)| (p(v).to_array(), r2))
             .collect();
+        sharp.ball_index = box_index::BoxIndex::new(
+            &sharp
+                .balls
+                .iter()
+                .map(|&(c, r2)| {
+                    // Widened far beyond the rounding of the square root, so a point the
+                    // distance test puts inside is in the box.
+                    let r = r2.sqrt() * (1.0 + 1e-6);
+                    (c.map(|x| x - r), c.map(|x| x + r))
+                })
+                .collect::<Vec<_>>(),
+        );
+        sharp.wedge_index = box_index::BoxIndex::new(
+            &sharp
+                .wedges
+                .iter()
+                .map(|w| (w.lo, w.hi))
+                .collect::<Vec<_>>(),
+        );
         let inward = |f: u32, a: u32, b: u32| -> Vec<DVec3> {
             let fi = &feat.facets[f as usize];
             let [u, v, w] = fi.plane.map(p);
@@ -1754,15 +1778,17 @@ impl Sharp {
 
     /// Whether `q` lies in the protection ball of a sharp vertex.
     fn in_ball(&self, q: [f64; 3]) -> bool {
-        self.balls
-            .iter()
-            .any(|&(c, r2)| crate::geometry::dist2_3(q, c) < r2)
+        self.ball_index.candidates(q).any(|i| {
+            let (c, r2) = self.balls[i as usize];
+            crate::geometry::dist2_3(q, c) < r2
+        })
     }
 
     /// Whether `q` lies in the protection zone of a thin wedge.
     fn in_wedge(&self, q: [f64; 3]) -> bool {
         use crate::geometry::dist2_point_segment3 as d2;
-        self.wedges.iter().any(|w| {
+        self.wedge_index.candidates(q).any(|i| {
+            let w = &self.wedges[i as usize];
             (0..3).all(|k| w.lo[k] <= q[k] && q[k] <= w.hi[k])
                 && d2(q, w.apex, w.ends[0]) < w.r2
                 && d2(q, w.apex, w.ends[1]) < w.r2

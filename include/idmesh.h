@@ -378,6 +378,12 @@ typedef struct idm_options2d {
    * reached refine returns `IDM_INCOMPLETE`. Default -1.
    */
   int64_t max_steiner;
+  /**
+   * Forbid Steiner points on every segment, interior ones included (Triangle's `-YY`);
+   * implies `no_boundary_steiner`, with the same consequences next to every segment.
+   * Default 0. (Appended after 0.2.0.)
+   */
+  int32_t no_segment_steiner;
 } idm_options2d;
 
 /**

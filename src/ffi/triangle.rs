@@ -26,7 +26,7 @@ use crate::switches::triangle::{output_segments, parse_library, Switches};
 /// a file only from Triangle's command line (its library writes nothing), likewise `I`.
 const C_HONOURED: &[&str] = &[
     "p", "q", "a", "u", "A", "c", "D", "j", "e", "v", "n", "g", "B", "P", "N", "E", "I", "O", "X",
-    "z", "o2", "Y", "S", "i", "F", "l", "s", "C", "Q", "V",
+    "z", "o2", "Y", "YY", "S", "i", "F", "l", "s", "C", "Q", "V",
 ];
 
 /// Triangle's switches, parsed (`idm_triangle_parse_switches`). Booleans are `int32_t`: 0 or 1.
@@ -94,6 +94,7 @@ impl idm_triangle_switches {
                 max_steiner: o
                     .max_steiner
                     .map_or(-1, |n| i64::try_from(n).unwrap_or(i64::MAX)),
+                no_segment_steiner: b(o.no_segment_steiner),
             },
             poly: b(s.poly),
             user_test: b(s.user_test),
@@ -120,7 +121,7 @@ impl idm_triangle_switches {
 
 /// Parses a switch string as Triangle's `triangulate()` takes it (`"pq30a0.1zQ"`; a leading
 /// `-` is tolerated) into `*out`. A switch Triangle does not know is `IDM_ERR_INVALID_ARGUMENT`;
-/// one the C ABI cannot honour (`r YY w W`) is `IDM_ERR_UNSUPPORTED`; the message names
+/// one the C ABI cannot honour (`w W`) is `IDM_ERR_UNSUPPORTED`; the message names
 /// it. Never ignores a switch.
 ///
 /// # Safety
@@ -563,6 +564,13 @@ mod tests {
         assert_eq!(parse("pv").unwrap().voronoi, 1);
         assert_eq!(parse("po2").unwrap().second_order, 1);
         assert_eq!(parse("pj").unwrap().jettison, 1);
+        let s = parse("pYY").unwrap();
+        assert_eq!(s.options.no_segment_steiner, 1, "-YY reaches the mesher");
+        assert_eq!(
+            (s.no_boundary_steiner, s.options.no_boundary_steiner),
+            (1, 1)
+        );
+        assert_eq!(parse("pY").unwrap().options.no_segment_steiner, 0);
         let s = parse("-paAS10iFlsXgI").unwrap();
         assert_eq!((s.options.region_max_area, s.region_attributes), (1, 1));
         assert_eq!(s.options.max_steiner, 10);
@@ -570,7 +578,7 @@ mod tests {
 
     #[test]
     fn refuses_by_name() {
-        for (sw, name) in [("pr", "-r"), ("pYY", "-YY"), ("w", "-w")] {
+        for (sw, name) in [("w", "-w"), ("pW", "-W")] {
             let (st, msg) = parse(sw).unwrap_err();
             assert_eq!(st, IDM_ERR_UNSUPPORTED, "{sw}");
             assert!(msg.contains(name), "{sw}: {msg}");

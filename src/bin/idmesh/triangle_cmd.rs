@@ -17,7 +17,7 @@ use crate::progress_ui::{catch_interrupt, check_interrupt, Outputs, Progress};
 
 /// The switches `idmesh triangle` honours; the others Triangle knows are refused by name.
 const HONOURED: &[&str] = &[
-    "p", "q", "a", "A", "c", "D", "Y", "S", "z", "e", "n", "N", "E", "P", "Q", "V",
+    "p", "q", "a", "A", "c", "D", "Y", "YY", "S", "z", "e", "n", "N", "E", "P", "Q", "V",
 ];
 
 /// The help text of `idmesh triangle --help`.

@@ -81,7 +81,7 @@ pub type idm_sizing2d_fn = Option<
 pub struct idm_mesher2d {
     /// The input collected so far (markers always have one entry per item: the defaults 0
     /// for points and 1 for segments fill in for calls made without markers).
-    pslg: Pslg,
+    pub(crate) pslg: Pslg,
     /// The options, including the sizing callback.
     opts: Options,
     /// The output of the last successful (or `IDM_INCOMPLETE`) refine; dropped by any change

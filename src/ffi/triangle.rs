@@ -13,12 +13,15 @@
 use std::ffi::{c_char, CStr};
 
 use crate::ffi::{
-    check_out, guard, idm_mesher2d, idm_mesher2d_neighbors, idm_mesher2d_segments,
-    idm_mesher2d_triangles, idm_mesher2d_vertices, idm_options2d, idm_status, input_slice, Failure,
+    change, check_out, guard, idm_mesher2d, idm_mesher2d_neighbors, idm_mesher2d_segments,
+    idm_mesher2d_triangles, idm_mesher2d_vertices, idm_options2d, idm_status, input_slice,
+    optional_slice, Failure,
 };
 use crate::geometry::circumcenter;
 use crate::mesh2d::{TriMesh, NONE};
-use crate::switches::triangle::{output_segments, parse_library, Switches};
+use crate::switches::triangle::{
+    output_segments, parse_library, refine_input, GivenMesh, Switches,
+};
 
 /// The switches `idm_triangle_parse_switches` accepts: every Triangle switch whose meaning the
 /// C ABI can deliver. `i F l s` pick Triangle's internal algorithms and `X` its arithmetic,
@@ -26,7 +29,7 @@ use crate::switches::triangle::{output_segments, parse_library, Switches};
 /// a file only from Triangle's command line (its library writes nothing), likewise `I`.
 const C_HONOURED: &[&str] = &[
     "p", "q", "a", "u", "A", "c", "D", "j", "e", "v", "n", "g", "B", "P", "N", "E", "I", "O", "X",
-    "z", "o2", "Y", "YY", "S", "i", "F", "l", "s", "C", "Q", "V",
+    "z", "o2", "Y", "YY", "S", "r", "i", "F", "l", "s", "C", "Q", "V",
 ];
 
 /// Triangle's switches, parsed (`idm_triangle_parse_switches`). Booleans are `int32_t`: 0 or 1.
@@ -74,6 +77,9 @@ pub struct idm_triangle_switches {
     pub second_order: i32,
     /// `j`: leave the vertices that are in no triangle out of the output, renumbering the rest.
     pub jettison: i32,
+    /// `r`: remesh the given triangles (`idm_triangle_set_given_mesh`). With it, `options`
+    /// applies the per-triangle area bounds when `a` has no number (`region_max_area`).
+    pub refine: i32,
 }
 
 impl idm_triangle_switches {
@@ -115,6 +121,7 @@ impl idm_triangle_switches {
             voronoi: b(s.voronoi),
             second_order: b(s.second_order),
             jettison: b(s.jettison),
+            refine: b(s.refine),
         }
     }
 }
@@ -148,6 +155,50 @@ pub unsafe extern "C" fn idm_triangle_parse_switches(
         unsafe { out.write(idm_triangle_switches::from_switches(&sw)) };
         Ok(())
     })
+}
+
+/// Triangle's `r`: makes the handle's input the PSLG that remeshes the given triangles
+/// (idmesh does not refine them in place; see `idmesh::switches::triangle::refine_input`).
+/// Call it after adding the points (and, with `p`, the segments) the triangles refer to: the
+/// handle's segments become those segments followed by the triangles' boundary edges
+/// (marker 1) and the edges between triangles of different attribute or area bound (marker
+/// 0); its holes and regions are replaced by hole seeds where the triangles leave an enclosed
+/// area uncovered and one region per connected group of triangles with one attribute and one
+/// area bound. Then refine as usual (set `region_attributes` to carry `attributes` to the
+/// output, `region_max_area` to apply `max_areas`).
+///
+/// `triangles`: 3 corners per triangle, 0-based; `attributes` and `max_areas`: NULL or one
+/// per triangle (a bound of 0 or less is none). `first` is how the caller numbers items, used
+/// in messages (Triangle's 0 or 1). Errors name the triangle or edge: a corner out of range, a
+/// degenerate triangle, an edge of more than two triangles, triangles that overlap.
+///
+/// # Safety
+/// `m` a live handle; `triangles` valid for `3*num_triangles` reads, `attributes` and
+/// `max_areas` NULL or valid for `num_triangles` reads.
+#[no_mangle]
+pub unsafe extern "C" fn idm_triangle_set_given_mesh(
+    m: *mut idm_mesher2d,
+    triangles: *const u32,
+    num_triangles: usize,
+    attributes: *const f64,
+    max_areas: *const f64,
+    first: u32,
+) -> idm_status {
+    // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+    unsafe {
+        change(m, |h| {
+            let tri: &[[u32; 3]] = input_slice(triangles.cast(), num_triangles, "triangles")?;
+            let attr = optional_slice(attributes, num_triangles, "attributes")?;
+            let area = optional_slice(max_areas, num_triangles, "max_areas")?;
+            let given = GivenMesh {
+                triangles: tri.to_vec(),
+                attributes: attr.map_or_else(Vec::new, <[f64]>::to_vec),
+                max_areas: area.map_or_else(Vec::new, <[f64]>::to_vec),
+            };
+            h.pslg = refine_input(&h.pslg, &given, area.is_some(), first)?;
+            Ok(())
+        })
+    }
 }
 
 /// Records `message` (NULL: a generic one) as this thread's `idm_last_error()` and returns

@@ -2,7 +2,8 @@
  * A C client of compat/triangle/triangle.h written as Triangle's users write one: REAL, VOID
  * and ANSI_DECLARATORS defined before the include, a triangulateio zeroed by hand, outputs
  * freed with trifree. It meshes a square with a hole, an internal segment and two regions in
- * 1-based and 0-based numbering and prints each input and mesh (read by
+ * 1-based and 0-based numbering, remeshes a mesh with -r (T lines: the given triangles, their
+ * attribute and area bound), and prints each input and mesh (read by
  * triangle_compare.py, which meshes the same input with Triangle itself and compares), then
  * feeds bad input and checks that each call returns with empty outputs and a message, and that
  * the next input still meshes. Exit status 0 when every check here passed.
@@ -87,6 +88,10 @@ static void dump(const char *sw, const struct triangulateio *in, const struct tr
   for (i = 0; i < in->numberofregions; i++)
     printf("R %.17g %.17g %.17g %.17g\n", in->regionlist[4 * i], in->regionlist[4 * i + 1],
            in->regionlist[4 * i + 2], in->regionlist[4 * i + 3]);
+  for (i = 0; in->trianglelist != NULL && i < in->numberoftriangles; i++)
+    printf("T %d %d %d %.17g %.17g\n", in->trianglelist[3 * i] - first,
+           in->trianglelist[3 * i + 1] - first, in->trianglelist[3 * i + 2] - first,
+           in->triangleattributelist[i], in->trianglearealist[i]);
   for (i = 0; i < out->numberofpoints; i++)
     printf("p %.17g %.17g %d\n", out->pointlist[2 * i], out->pointlist[2 * i + 1],
            out->pointmarkerlist[i]);
@@ -316,7 +321,7 @@ static void refine_given(void) {
   struct triangulateio in, out, given, again;
   int segments[22], i, small = 0;
   double *bounds, area[3] = {0, 0, 0}, coarse = 0;
-  char sw1[] = "pq30a0.05AzQ", sw2[] = "rq30azQ", sw3[] = "rzQ";
+  char sw1[] = "pq30a0.05AzQ", sw2[] = "rq30aenzQ", sw3[] = "rzQ";
   fill_domain(&in, 0, segments);
   clear(&out);
   triangulate(sw1, &in, &out, NULL);
@@ -360,6 +365,7 @@ static void refine_given(void) {
         area[2]);
   CHECK(small >= 4 / 0.005 && coarse > 0.01, "-ra: %d small triangles, largest other %g", small,
         coarse);
+  if (again.numberoftriangles > 0) dump(sw2, &given, &again, 0);
   free_out(&again);
   /* Bad given meshes: an error naming the item, empty outputs, never a crash. */
   given.trianglelist[4] = out.numberofpoints + 3;

@@ -370,9 +370,8 @@ pub fn refine_input(
         let (a, c) = edge(t, i);
         u == NONE || group(u as usize) != group(t) || known.contains(&key(a, c))
     };
-    for t in 0..nt {
-        for i in 0..3 {
-            let u = nb[t][i];
+    for (t, across) in nb.iter().enumerate() {
+        for (i, &u) in across.iter().enumerate() {
             let (a, c) = edge(t, i);
             // Each edge once: from the triangle with the smaller index (or the only one).
             if wall(t, i) && (u == NONE || u as usize > t) && !known.contains(&key(a, c)) {
@@ -410,9 +409,9 @@ pub fn refine_input(
         points: pts.clone(),
         ..Pslg::default()
     };
-    for t in 0..nt {
-        for i in 0..3 {
-            if nb[t][i] == NONE {
+    for (t, across) in nb.iter().enumerate() {
+        for (i, &u) in across.iter().enumerate() {
+            if u == NONE {
                 let (a, c) = edge(t, i);
                 cover.segments.push([a, c]);
             }

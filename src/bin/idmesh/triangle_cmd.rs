@@ -35,14 +35,20 @@ input (0 or 1), or starts at 0 with -z.
 
 Switches are letters that may be grouped, e.g. -pq30a0.01V:
   -p          read FILE.poly (segments, holes, regional attributes and area bounds)
+  -r          remesh a previous mesh: read FILE.node and FILE.ele (with -p the segments of
+              FILE.poly, with -a without a number the per-triangle bounds of FILE.area);
+              its boundary, its points (same numbers), its triangle attributes and area
+              bounds (as regions) are kept, its triangles are remeshed, not refined in place
   -q[ANGLE]   minimum angle in degrees (default 20; above about 34 it may not terminate)
   -a[AREA]    with a number: maximum triangle area; without: the .poly file's regional bounds
+              (with -r: the .area file's)
   -A          write each triangle's regional attribute to the .ele file
   -c          mesh the convex hull of the input, not only the area enclosed by segments
   -D          conforming Delaunay (accepted; idmesh output always is, except with -Y)
   -Y          no Steiner points on boundary segments (those with the domain on one side):
               the mesh is then constrained Delaunay, and triangles whose new vertex would
               encroach such a segment keep their bad angle or size, as in Triangle
+  -YY         no Steiner points on any segment, interior ones too (same consequences)
   -S[N]       at most N Steiner points (-S alone: none); a warning is printed if reached
   -z          number output items from 0
   -e          write an .edge file      -n   write a .neigh file

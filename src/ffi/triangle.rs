@@ -791,4 +791,71 @@ mod tests {
             idm_mesher2d_free(m);
         }
     }
+
+    #[test]
+    fn a_given_mesh_is_remeshed_with_its_area_bounds() {
+        let mut m = std::ptr::null_mut();
+        unsafe {
+            assert_eq!(idm_mesher2d_new(&mut m), IDM_OK);
+            let xy = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.5, 0.5];
+            assert_eq!(
+                idm_mesher2d_add_points(m, xy.as_ptr(), 5, std::ptr::null()),
+                IDM_OK
+            );
+            // Four triangles around the centre; a small bound on the first only.
+            let tri: [u32; 12] = [0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4];
+            let attr = [1.0, 2.0, 2.0, 2.0];
+            let area = [0.001, -1.0, -1.0, -1.0];
+            let bad: [u32; 12] = [0, 1, 9, 1, 2, 4, 2, 3, 4, 3, 0, 4];
+            let st =
+                idm_triangle_set_given_mesh(m, bad.as_ptr(), 4, attr.as_ptr(), area.as_ptr(), 1);
+            assert_eq!(st, IDM_ERR_INVALID_ARGUMENT);
+            let msg = CStr::from_ptr(idm_last_error())
+                .to_string_lossy()
+                .into_owned();
+            assert!(msg.contains("triangle 1 has corner 10"), "{msg}");
+            let st =
+                idm_triangle_set_given_mesh(m, tri.as_ptr(), 4, attr.as_ptr(), area.as_ptr(), 0);
+            assert_eq!(st, IDM_OK);
+            let s = parse("raQ").unwrap();
+            assert_eq!((s.refine, s.options.region_max_area), (1, 1));
+            let mut o = s.options;
+            o.region_attributes = 1;
+            assert_eq!(idm_mesher2d_set_options(m, &o), IDM_OK);
+            assert_eq!(idm_mesher2d_refine(m), IDM_OK);
+            assert_eq!(idm_mesher2d_validate(m), IDM_OK);
+            let (mut t, mut nt, mut v, mut nv) = (std::ptr::null(), 0, std::ptr::null(), 0);
+            let (mut a, mut na) = (std::ptr::null(), 0);
+            assert_eq!(idm_mesher2d_triangles(m, &mut t, &mut nt), IDM_OK);
+            assert_eq!(idm_mesher2d_vertices(m, &mut v, &mut nv), IDM_OK);
+            assert_eq!(idm_mesher2d_triangle_attributes(m, &mut a, &mut na), IDM_OK);
+            let t = std::slice::from_raw_parts(t, 3 * nt);
+            let v = std::slice::from_raw_parts(v, 2 * nv);
+            let a = std::slice::from_raw_parts(a, na);
+            assert_eq!(v[..10], xy, "the given points keep their indices");
+            let (mut small, mut sum1) = (0, 0.0);
+            for k in 0..nt {
+                let p = |c: usize| {
+                    [
+                        v[2 * t[3 * k + c] as usize],
+                        v[2 * t[3 * k + c] as usize + 1],
+                    ]
+                };
+                let ar = 0.5 * crate::geometry::area2(p(0), p(1), p(2));
+                if a[k] == 1.0 {
+                    assert!(ar <= 0.001);
+                    small += 1;
+                    sum1 += ar;
+                } else {
+                    assert_eq!(a[k], 2.0);
+                }
+            }
+            assert!(
+                small >= 250 && (sum1 - 0.25f64).abs() < 1e-12,
+                "{small} {sum1}"
+            );
+            assert!(nt < small + 60, "the rest stays coarse: {nt} triangles");
+            idm_mesher2d_free(m);
+        }
+    }
 }

@@ -1372,6 +1372,50 @@ mod tests {
     }
 
     #[test]
+    fn coplanar_tolerance_turns_the_merge_on_and_is_validated() {
+        let mut m = Handle::new();
+        let mut o = options(0.0, -1.0);
+        assert_eq!(o.coplanar_tolerance, 0.0, "exact by default");
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
+        let h = &m.get_mut().opts;
+        assert!(!h.merge_coplanar && h.coplanar_tolerance.is_none());
+        o.coplanar_tolerance = 1e-8;
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
+        let h = &m.get_mut().opts;
+        assert!(h.merge_coplanar && h.coplanar_tolerance == Some(1e-8));
+        for bad in [f64::NAN, -1e-8] {
+            let mut b = o;
+            b.coplanar_tolerance = bad;
+            assert_eq!(
+                unsafe { idm_mesher3d_set_options(m.0, &b) },
+                IDM_ERR_INVALID_ARGUMENT
+            );
+            assert!(
+                last_error().contains("coplanar_tolerance"),
+                "{}",
+                last_error()
+            );
+        }
+        // Too large: refused by refine, naming it.
+        let m = Handle::new();
+        load(&m, &split_cube());
+        o.coplanar_tolerance = 0.5;
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
+        assert_ne!(unsafe { idm_mesher3d_refine(m.0) }, IDM_OK);
+        assert!(
+            last_error().contains("coplanar tolerance"),
+            "{}",
+            last_error()
+        );
+        // An older struct gets the default: no merging.
+        let mut old = o;
+        old.struct_size = <idm_options3d as SizedOptions>::BASELINE;
+        let mut m = Handle::new();
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &old) }, IDM_OK);
+        assert!(m.get_mut().opts.coplanar_tolerance.is_none());
+    }
+
+    #[test]
     fn min_dihedral_option_removes_slivers_and_old_structs_get_the_default() {
         let o = options(1.414, 0.0005);
         assert_eq!(o.min_dihedral, crate::mesh3d::DEFAULT_MIN_DIHEDRAL);

@@ -1152,6 +1152,14 @@ mod tests {
         };
         assert_eq!(idm_tetgen_switches::from(&back), s);
         assert_eq!(parse("pqc").unwrap().convex_hull, 1);
+        let t = parse("pT1e-7").unwrap();
+        assert_eq!((t.coplanar_tolerance, s.coplanar_tolerance), (1e-7, 0.0));
+        let back = t.to_switches().ok().unwrap();
+        assert_eq!(back.coplanar_tolerance, Some(1e-7));
+        assert_eq!(back.options().coplanar_tolerance, Some(1e-7));
+        let (st, msg) = parse("pT2").unwrap_err();
+        assert_eq!(st, idm_status::IDM_ERR_INVALID_ARGUMENT);
+        assert!(msg.contains("-T"), "{msg}");
         let (st, msg) = parse("pqw").unwrap_err();
         assert_eq!(st, idm_status::IDM_ERR_UNSUPPORTED);
         assert!(msg.contains("-w"), "{msg}");

@@ -19,14 +19,21 @@
 //! for sliver removal to fix. With a tolerance `tol` (TetGen's `-T`), facets that would be
 //! merged but for exact coplanarity are first grouped and snapped onto one plane:
 //!
-//! * Groups grow from a seed facet, the largest by area first (ties: the lower index), across
+//! * Groups grow from a seed facet, the largest by area first (areas rounded to single
+//!   precision; ties: the lower index), across
 //!   the edges the exact merge would join (same conditions but coplanarity). A neighbour `g`
-//!   joins when every vertex of `g` lies within `tol × L(g)` of the seed's plane, `L(g)` being
-//!   `g`'s longest edge: a distance relative to the facet's own size, so the rule does not
-//!   change under scaling and translation (up to the rounding of the coordinates themselves).
-//!   Comparing each facet with the seed's plane, not with its neighbour's, keeps a gently
-//!   curved surface from being flattened by a chain of small folds.
-//! * Each vertex of the group off the seed's plane (exact `orient3d`) is moved along the
+//!   joins when every vertex of `g` lies within `tol × L(g)` of the reference plane, `L(g)`
+//!   being `g`'s longest edge: a distance relative to the facet's own size, so the rule does
+//!   not change under scaling and translation (up to the rounding of the coordinates
+//!   themselves). The reference plane is the seed's own plane, or, when the seed lies within
+//!   the tolerance of it, the plane parallel to the coordinate plane the seed is closest to,
+//!   through the coordinate most of the seed's vertices share (a scanned box face: its noise
+//!   does not tilt the reference). Comparing every facet with one plane, not with its
+//!   neighbour's, keeps a gently curved surface from being flattened by a chain of small folds.
+//! * The group's plane is the first of these (at most 8) on which every member lies within
+//!   the tolerance and every move below is exact: the coordinate plane (normal to the seed's
+//!   dominant axis) through the value most of the group's vertices share, then the members'
+//!   own planes, the seed's first. Each vertex off it (exact `orient3d`) is moved along the
 //!   coordinate axis closest to the plane's normal onto a point with floating-point
 //!   coordinates lying *exactly* on the plane (the solved coordinate or one of its nearest
 //!   floating-point neighbours, checked exactly). It moves by its distance to the plane (for a
@@ -380,8 +387,11 @@ pub(crate) fn snap_nearly_coplanar(plc: &Plc, tol: f64) -> (Option<Plc>, SnapRep
     let mut order: Vec<u32> = (0..nf as u32)
         .filter(|&f| info[f as usize].is_some() && !neighbours[f as usize].is_empty())
         .collect();
-    order.sort_by(|&f, &g| sizes[g as usize].0.total_cmp(&sizes[f as usize].0));
-    // Groups, grown from the largest facets (stable sort: ties keep index order).
+    // Largest first, areas rounded to single precision: facets of one size (a grid's
+    // triangles, whose noise changes their areas only by its square) then keep index order
+    // (stable sort), whatever the rounding of their coordinates.
+    order.sort_by(|&f, &g| (sizes[g as usize].0 as f32).total_cmp(&(sizes[f as usize].0 as f32)));
+    // Groups, grown from the largest facets.
     let mut group_of = vec![NONE; nf];
     let mut groups: Vec<Vec<u32>> = Vec::new();
     for &seed in &order {
@@ -389,17 +399,18 @@ pub(crate) fn snap_nearly_coplanar(plc: &Plc, tol: f64) -> (Option<Plc>, SnapRep
             continue;
         }
         group_of[seed as usize] = seed;
-        let [a, b, c] = info[seed as usize]
-            .as_ref()
-            .map_or([0; 3], |l| l.plane)
-            .map(v3);
-        let n = (b - a).cross(c - a);
-        let near = |g: u32| {
-            let bound = tol * sizes[g as usize].1 * n.length();
-            info[g as usize]
-                .as_ref()
-                .is_some_and(|l| l.verts.iter().all(|&v| n.dot(v3(v) - a).abs() <= bound))
+        // The reference plane: the coordinate plane through the seed (see `axis_plane`)
+        // when the seed is within the tolerance of it, else the seed's own plane, so that
+        // the noise of a scanned flat face does not tilt the reference.
+        let loop_of = |f: u32| info[f as usize].as_ref();
+        let own = loop_of(seed).map_or([[0.0; 3]; 3], |l| l.plane.map(p));
+        let within = |t: [[f64; 3]; 3], g: u32| {
+            loop_of(g)
+                .is_some_and(|l| near_plane(&plc.points, t, &l.verts, tol * sizes[g as usize].1))
         };
+        let flat = loop_of(seed).map(|l| axis_plane(&plc.points, own, &l.verts));
+        let reference = flat.filter(|&t| within(t, seed)).unwrap_or(own);
+        let near = |g: u32| within(reference, g);
         let (mut members, mut queue) = (vec![seed], vec![seed]);
         while let Some(f) = queue.pop() {
             for &g in &neighbours[f as usize] {
@@ -494,28 +505,8 @@ impl Group<'_> {
         let p = |v: u32| points[v as usize];
         let plane_of = |f: u32| self.info[f as usize].as_ref().map(|l| l.plane.map(p));
         let mut planes = Vec::new();
-        if let Some([a, b, c]) = plane_of(self.members[0]) {
-            let n = (DVec3::from_array(b) - DVec3::from_array(a))
-                .cross(DVec3::from_array(c) - DVec3::from_array(a))
-                .abs()
-                .to_array();
-            let k = (0..3).max_by(|&i, &j| n[i].total_cmp(&n[j])).unwrap_or(2);
-            let mut values: Vec<f64> = self.verts.iter().map(|&v| p(v)[k]).collect();
-            values.sort_by(f64::total_cmp);
-            let mode = values
-                .chunk_by(|x, y| x == y)
-                .max_by_key(|run| run.len())
-                .map(|run| run[0]);
-            if let Some(value) = mode {
-                let mut t = [[0.0; 3]; 3];
-                for (m, corner) in t.iter_mut().enumerate() {
-                    corner[k] = value;
-                    if m > 0 {
-                        corner[(k + m) % 3] = 1.0;
-                    }
-                }
-                planes.push(t);
-            }
+        if let Some(t) = plane_of(self.members[0]) {
+            planes.push(axis_plane(points, t, self.verts));
         }
         planes.extend(self.members.iter().filter_map(|&f| plane_of(f)));
         planes.truncate(MAX_PLANES);
@@ -533,14 +524,9 @@ impl Group<'_> {
         plc: &Plc,
         facets_of: &HashMap<u32, Vec<u32>>,
     ) -> Option<usize> {
-        let [a, b, c] = t.map(DVec3::from_array);
-        let n = (b - a).cross(c - a);
         let within = self.members.iter().all(|&g| {
-            let bound = self.tol * self.sizes[g as usize].1 * n.length();
             self.info[g as usize].as_ref().is_some_and(|l| {
-                l.verts
-                    .iter()
-                    .all(|&v| n.dot(DVec3::from_array(points[v as usize]) - a).abs() <= bound)
+                near_plane(points, t, &l.verts, self.tol * self.sizes[g as usize].1)
             })
         });
         if !within {
@@ -578,6 +564,42 @@ impl Group<'_> {
         }
         None
     }
+}
+
+/// Whether every vertex of `verts` lies within `distance` of the plane through `t`
+/// (floating point: a tolerance, not a geometric decision).
+fn near_plane(points: &[[f64; 3]], t: [[f64; 3]; 3], verts: &[u32], distance: f64) -> bool {
+    let [a, b, c] = t.map(DVec3::from_array);
+    let n = (b - a).cross(c - a);
+    let bound = distance * n.length();
+    verts
+        .iter()
+        .all(|&v| n.dot(DVec3::from_array(points[v as usize]) - a).abs() <= bound)
+}
+
+/// Three points spanning the plane parallel to a coordinate plane, normal to the dominant
+/// axis of the plane of `t`, through the value of that coordinate most of `verts` share (the
+/// smallest of the most common values); `points` gives the coordinates.
+fn axis_plane(points: &[[f64; 3]], t: [[f64; 3]; 3], verts: &[u32]) -> [[f64; 3]; 3] {
+    let [a, b, c] = t.map(DVec3::from_array);
+    let n = (b - a).cross(c - a).abs().to_array();
+    let k = (0..3).max_by(|&i, &j| n[i].total_cmp(&n[j])).unwrap_or(2);
+    let mut values: Vec<f64> = verts.iter().map(|&v| points[v as usize][k]).collect();
+    values.sort_by(f64::total_cmp);
+    let mut best = (0, 0.0);
+    for run in values.chunk_by(|x, y| x == y) {
+        if run.len() > best.0 {
+            best = (run.len(), run[0]);
+        }
+    }
+    let mut plane = [[0.0; 3]; 3];
+    for (m, corner) in plane.iter_mut().enumerate() {
+        corner[k] = best.1;
+        if m > 0 {
+            corner[(k + m) % 3] = 1.0;
+        }
+    }
+    plane
 }
 
 /// A point with floating-point coordinates exactly on the plane of `t` near `q`: `q` moved

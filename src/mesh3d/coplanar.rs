@@ -552,9 +552,9 @@ impl Group<'_> {
         }
         ok = ok
             && undo.iter().all(|&(v, _)| {
-                facets_of
-                    .get(&v)
-                    .is_none_or(|fs| fs.iter().all(|&f| planar(points, &plc.facets[f as usize])))
+                facets_of.get(&v).map_or(true, |fs| {
+                    fs.iter().all(|&f| planar(points, &plc.facets[f as usize]))
+                })
             });
         if ok {
             return Some(undo.len());
@@ -627,11 +627,11 @@ fn snap_onto(t: [[f64; 3]; 3], q: [f64; 3]) -> Option<[f64; 3]> {
         s[k] = match step {
             0 => solved,
             _ if step % 2 == 1 => {
-                up = up.next_up();
+                up = next_float(up, true);
                 up
             }
             _ => {
-                down = down.next_down();
+                down = next_float(down, false);
                 down
             }
         };
@@ -640,6 +640,17 @@ fn snap_onto(t: [[f64; 3]; 3], q: [f64; 3]) -> Option<[f64; 3]> {
         }
     }
     None
+}
+
+/// The next floating-point number above (`up`) or below `x`, a finite number (`f64::next_up`
+/// and `next_down` are newer than the crate's minimum Rust version).
+fn next_float(x: f64, up: bool) -> f64 {
+    if x == 0.0 {
+        let tiny = f64::from_bits(1);
+        return if up { tiny } else { -tiny };
+    }
+    let bits = x.to_bits();
+    f64::from_bits(if (x > 0.0) == up { bits + 1 } else { bits - 1 })
 }
 
 /// Whether every vertex and hole seed of `facet` lies exactly on one plane (`points` as moved).

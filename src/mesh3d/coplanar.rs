@@ -321,7 +321,7 @@ impl UnionFind {
     }
 }
 
-/// What [`snap_nearly_coplanar`] did.
+/// What [`snap_nearly_coplanar_facets`] (and the tolerance merge of `tetrahedralize`) did.
 #[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
 pub struct SnapReport {
     /// Groups of nearly coplanar facets whose vertices were moved onto one plane.

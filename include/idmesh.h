@@ -516,6 +516,17 @@ typedef struct idm_options3d {
    * Number of triples in `segment_constraints`. Default 0.
    */
   size_t num_segment_constraints;
+  /**
+   * Merge neighbouring facets with the same marker that are coplanar within this relative
+   * tolerance (TetGen's `-T<tol>`, whose default is 1e-8), exactly coplanar ones included:
+   * the vertices of nearly coplanar facets are moved exactly onto one plane (by at most
+   * about the tolerance times the facet's longest edge) and the shared edges are no longer
+   * input edges, so the output's vertices are the moved points (see the Rust
+   * `Options3::coplanar_tolerance`). Not with `keep_surface`. 0: no merging, coplanarity
+   * exact (the C API's default); must not be negative or NaN, and at most 0.01. Default 0.
+   * Appended after 0.2.0: a caller's older struct gets the default.
+   */
+  double coplanar_tolerance;
 } idm_options3d;
 
 /**
@@ -683,6 +694,11 @@ typedef struct idm_tetgen_switches {
    * `c`: mesh the convex hull of the input, keeping the PLC inside it.
    */
   int32_t convex_hull;
+  /**
+   * `T<tol>`: the relative tolerance for merging nearly coplanar facets (`T` alone: 1e-8);
+   * 0 when there is none (coplanarity decided exactly).
+   */
+  double coplanar_tolerance;
 } idm_tetgen_switches;
 
 /**

@@ -87,6 +87,19 @@ pub struct idm_options3d {
     pub segment_constraints: *const f64,
     /// Number of triples in `segment_constraints`. Default 0.
     pub num_segment_constraints: usize,
+    /// Mesh optimisation level (TetGen's `-O<level>`): 0 to 10 passes of flips and smoothing
+    /// of interior Steiner vertices after meshing, which improve the extreme dihedral angles
+    /// and never make them worse; the mesh is then no longer Delaunay (validate checks it
+    /// without empty circumspheres). 0: none, the mesh stays Delaunay. Default 0. Added after
+    /// 0.2.0, like the two fields below: a caller's older struct gets the defaults.
+    pub optimize_level: i32,
+    /// The optimisation's operations (TetGen's `-O<level>/<scheme>`), bits: 1 flips, 2 vertex
+    /// smoothing, 4 vertex insertion/deletion (accepted, not done); 0 to 7. Default 7.
+    pub optimize_scheme: i32,
+    /// The optimisation's maximum dihedral angle target, degrees (TetGen's `-o/<angle>`):
+    /// tetrahedra with a dihedral angle above it or below 180 minus it are worked on. Above 0
+    /// and below 180, not NaN. Default 165.
+    pub optimize_max_dihedral: f64,
 }
 
 /// Quality figures of the current mesh (see `idm_mesher3d_stats`).
@@ -217,6 +230,11 @@ unsafe impl SizedOptions for idm_options3d {
             num_facet_constraints: 0,
             segment_constraints: std::ptr::null(),
             num_segment_constraints: 0,
+            optimize_level: d.optimize_level as i32,
+            optimize_scheme: d.optimize_scheme.unwrap_or(crate::mesh3d::DEFAULT_SCHEME) as i32,
+            optimize_max_dihedral: d
+                .optimize_max_dihedral
+                .unwrap_or(crate::mesh3d::DEFAULT_MAX_DIHEDRAL),
         }
     }
 }
@@ -447,7 +465,21 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
                 ("radius_edge", o.radius_edge),
                 ("max_volume", o.max_volume),
                 ("min_dihedral", o.min_dihedral),
+                ("optimize_max_dihedral", o.optimize_max_dihedral),
             ])?;
+            let optimize_level = u32::try_from(o.optimize_level).map_err(|_| {
+                Failure::invalid(format!(
+                    "optimize_level {} must be from 0 to {}",
+                    o.optimize_level,
+                    crate::mesh3d::MAX_LEVEL
+                ))
+            })?;
+            let optimize_scheme = u32::try_from(o.optimize_scheme).map_err(|_| {
+                Failure::invalid(format!(
+                    "optimize_scheme {} must be from 0 to 7",
+                    o.optimize_scheme
+                ))
+            })?;
             let facets = input_slice(
                 o.facet_constraints,
                 scaled(o.num_facet_constraints, 2, "num_facet_constraints")?,
@@ -475,6 +507,9 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
                 convex_hull: o.convex_hull != 0,
                 facet_max_area: bounds.facet_max_area,
                 segment_max_length: bounds.segment_max_length,
+                optimize_level,
+                optimize_scheme: Some(optimize_scheme),
+                optimize_max_dihedral: Some(o.optimize_max_dihedral),
             };
             Ok(())
         })
@@ -978,6 +1013,7 @@ mod tests {
             complete: false,
             steiner_points: 3,
             surface_kept: false,
+            optimized: false,
         }
     }
 

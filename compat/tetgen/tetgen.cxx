@@ -210,7 +210,16 @@ std::string switch_string(const tetgenbehavior *b) {
     snprintf(num, sizeof num, " o%d ", b->order);
     s += num;
   }
-  flag(b->optlevel != 2 || b->optscheme != 7, "O");
+  // Mesh optimisation (O, o/): idmesh's default is none (optlevel 0, see the constructor);
+  // the level is spelled whenever a field differs, so that o/ alone does not imply O here.
+  if (b->optlevel != 0 || b->optscheme != 7 || b->optmaxdihedral != 165.0) {
+    snprintf(num, sizeof num, " O%d/%d ", b->optlevel, b->optscheme);
+    s += num;
+  }
+  if (b->optmaxdihedral != 165.0) {
+    snprintf(num, sizeof num, " o/%.17f ", b->optmaxdihedral);
+    s += num;
+  }
   flag(b->epsilon != 1.0e-8, "T");
   if (b->steinerleft >= 0) {
     snprintf(num, sizeof num, " S%d ", b->steinerleft);
@@ -251,6 +260,9 @@ void apply(tetgenbehavior *b, const idm_tetgen_switches &w) {
   b->metric = w.metric;
   b->order = w.order2 ? 2 : 1;
   b->convex = w.convex_hull;
+  b->optlevel = w.optimize_level;
+  b->optscheme = w.optimize_scheme;
+  b->optmaxdihedral = w.optimize_max_dihedral;
 }
 
 // The user's tetunsuitable as idmesh's sizing callback. A C++ exception it throws must not
@@ -596,7 +608,9 @@ tetgenbehavior::tetgenbehavior() {
   fliplinklevel = flipstarsize = -1;
   fliplinklevelinc = 1;
   reflevel = 3;
-  optlevel = 2;
+  // TetGen optimises by default (-O2/7), giving up the Delaunay property; idmesh only when
+  // asked: O in the switches or optlevel set above 0.
+  optlevel = 0;
   optscheme = 7;
   delmaxfliplevel = 1;
   order = 1;

@@ -1805,6 +1805,88 @@ mod tests {
     }
 
     #[test]
+    fn optimisation_options_map_default_and_are_checked() {
+        let d = options(0.0, 0.0);
+        assert_eq!(
+            (d.optimize_level, d.optimize_scheme, d.optimize_max_dihedral),
+            (0, 7, 165.0),
+            "off by default: the mesh stays Delaunay"
+        );
+        // A struct that ends before the optimisation fields gets their defaults.
+        let mut o = options(1.414, 0.001);
+        o.optimize_level = 3;
+        o.struct_size = std::mem::offset_of!(idm_options3d, optimize_level);
+        let p = cube();
+        let m = Handle::new();
+        load(&m, &p);
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
+        assert_eq!(m.get().opts.optimize_level, 0, "beyond the caller's struct");
+        o.struct_size = size_of::<idm_options3d>();
+        o.min_dihedral = 0.0;
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
+        assert_eq!(
+            unsafe { idm_mesher3d_refine(m.0) },
+            IDM_OK,
+            "{}",
+            last_error()
+        );
+        let want = tetrahedralize(
+            &p,
+            &Options3 {
+                radius_edge: Some(1.414),
+                max_volume: Some(0.001),
+                min_dihedral: Some(0.0),
+                optimize_level: 3,
+                ..Options3::default()
+            },
+        )
+        .unwrap();
+        assert!(want.optimized, "the cube's slivers are flipped away");
+        assert_eq!(m.get().mesh.as_ref(), Some(&want));
+        // The getters lend the optimised mesh (the flag itself has no getter).
+        let got = read_back(&m);
+        assert_eq!(
+            got,
+            TetMesh {
+                optimized: false,
+                ..want.clone()
+            }
+        );
+        assert_eq!(
+            unsafe { idm_mesher3d_validate(m.0) },
+            IDM_OK,
+            "{}",
+            last_error()
+        );
+        for (field, value) in [("optimize_level", -1), ("optimize_scheme", -2)] {
+            let mut bad = o;
+            if field == "optimize_level" {
+                bad.optimize_level = value;
+            } else {
+                bad.optimize_scheme = value;
+            }
+            assert_eq!(
+                unsafe { idm_mesher3d_set_options(m.0, &bad) },
+                IDM_ERR_INVALID_ARGUMENT
+            );
+            assert!(last_error().contains(field), "{}", last_error());
+        }
+        let mut bad = o;
+        bad.optimize_max_dihedral = f64::NAN;
+        assert_eq!(
+            unsafe { idm_mesher3d_set_options(m.0, &bad) },
+            IDM_ERR_INVALID_ARGUMENT
+        );
+        bad.optimize_max_dihedral = 200.0;
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &bad) }, IDM_OK);
+        assert_eq!(
+            unsafe { idm_mesher3d_refine(m.0) },
+            IDM_ERR_INVALID_ARGUMENT
+        );
+        assert!(last_error().contains("200"), "{}", last_error());
+    }
+
+    #[test]
     fn surface_input_repairs_the_facets_first() {
         // The cube with its vertex 1 given again (as the last point) for one facet: refused
         // as it is, meshed with `surface_input`, whose output has the other points first.

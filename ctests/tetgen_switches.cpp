@@ -15,9 +15,9 @@
 //       while other faces are not forced below them; a bad bound throws 10;
 //   c   an L-shaped prism is meshed to its convex hull (volume 3.5 instead of 3);
 //   O, o/  optlevel is 0 unless O is given (idmesh stays Delaunay by default), O3/1o/150 is
-//       parsed into optlevel, optscheme and optmaxdihedral; optlevel set in the fields makes
-//       the cube's smallest dihedral angle larger and its largest not larger, keeping the
-//       volume; a bad optscheme throws 10.
+//       parsed into optlevel, optscheme and optmaxdihedral; optlevel 3 with optmaxdihedral 140
+//       set in the fields makes the cube's smallest dihedral angle larger and its largest not
+//       larger, keeping the volume; a bad optscheme throws 10.
 #include <tetgen.h>
 
 #include <algorithm>
@@ -371,9 +371,12 @@ static void test_optimize() {
   double lo[2], hi[2], vol[2];
   for (int o = 0; o < 2; o++) {
     tetgenbehavior bb;
-    check(bb.parse_commandline((char *)"pq1.414/0a0.001Q"), "parse pq1.414/0a0.001Q");
+    check(bb.parse_commandline((char *)"pq1.414a0.001Q"), "parse pq1.414a0.001Q");
     check(bb.optlevel == 0, "no O: optlevel 0");
-    if (o) bb.optlevel = 3;
+    if (o) {
+      bb.optlevel = 3;
+      bb.optmaxdihedral = 140;
+    }
     tetgenio in, out;
     cube(in);
     tetrahedralize(&bb, &in, &out);

@@ -25,8 +25,8 @@
 //!   them strictly better: the mesh's extreme dihedral angles never get worse.
 //!
 //! Work is bounded: `level` passes (at most [`MAX_LEVEL`]), each over the bad tetrahedra of
-//! its start, stars larger than [`MAX_STAR`] not smoothed; a pass that changes nothing ends
-//! the optimisation. The result is checked by the exact `validate_mesh` without the empty
+//! its start, trying each edge and each vertex at most once, stars larger than [`MAX_STAR`]
+//! not smoothed; a pass that changes nothing ends the optimisation. The result is checked by the exact `validate_mesh` without the empty
 //! circumsphere test (the mesh is marked [`TetMesh::optimized`]) and is never returned when
 //! that check fails.
 
@@ -133,6 +133,9 @@ struct Opt<'a> {
     free_vertex: Vec<bool>,
     target: f64,
     counts: OptimizeCounts,
+    /// Edges and vertices tried in vain in this pass (a budget: each once per pass).
+    tried_edges: FastSet<[u32; 2]>,
+    tried_vertices: FastSet<u32>,
 }
 
 impl Opt<'_> {
@@ -489,6 +492,8 @@ impl Opt<'_> {
             .filter_map(|t| self.badness(t).map(|s| (s, t)))
             .collect();
         bad.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        self.tried_edges.clear();
+        self.tried_vertices.clear();
         let total = bad.len() as u64;
         let mut changes = 0;
         for (k, &(_, t)) in bad.iter().enumerate() {
@@ -503,9 +508,11 @@ impl Opt<'_> {
             if scheme & 2 != 0 {
                 let tv = self.m.tets[t as usize];
                 for v in tv {
-                    if self.free_vertex[v as usize] && self.try_smooth(v) {
-                        changes += 1;
-                        break;
+                    if self.free_vertex[v as usize] && self.tried_vertices.insert(v) {
+                        if self.try_smooth(v) {
+                            changes += 1;
+                            break;
+                        }
                     }
                 }
             }
@@ -523,6 +530,9 @@ impl Opt<'_> {
         }
         let tv = self.m.tets[t as usize];
         for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+            if !self.tried_edges.insert(edge_key(tv[i], tv[j])) {
+                continue;
+            }
             if self.try_remove_edge(t, tv[i], tv[j]) {
                 return true;
             }
@@ -646,6 +656,8 @@ impl<'a> Opt<'a> {
             free_vertex: constrained.iter().map(|&c| !c).collect(),
             target,
             counts: OptimizeCounts::default(),
+            tried_edges: FastSet::default(),
+            tried_vertices: FastSet::default(),
         }
     }
 }

@@ -467,19 +467,8 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
                 ("min_dihedral", o.min_dihedral),
                 ("optimize_max_dihedral", o.optimize_max_dihedral),
             ])?;
-            let optimize_level = u32::try_from(o.optimize_level).map_err(|_| {
-                Failure::invalid(format!(
-                    "optimize_level {} must be from 0 to {}",
-                    o.optimize_level,
-                    crate::mesh3d::MAX_LEVEL
-                ))
-            })?;
-            let optimize_scheme = u32::try_from(o.optimize_scheme).map_err(|_| {
-                Failure::invalid(format!(
-                    "optimize_scheme {} must be from 0 to 7",
-                    o.optimize_scheme
-                ))
-            })?;
+            let (optimize_level, optimize_scheme) =
+                optimize_ints(o.optimize_level, o.optimize_scheme)?;
             let facets = input_slice(
                 o.facet_constraints,
                 scaled(o.num_facet_constraints, 2, "num_facet_constraints")?,
@@ -514,6 +503,19 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
             Ok(())
         })
     }
+}
+
+/// The optimisation level and scheme of the C structs as the Rust options take them: negative
+/// values are refused here, too large ones by refine (`Options3`'s check).
+pub(crate) fn optimize_ints(level: i32, scheme: i32) -> Result<(u32, u32), Failure> {
+    let ok = |v: i32, name: &str, max: u32| {
+        u32::try_from(v)
+            .map_err(|_| Failure::invalid(format!("{name} {v} must be from 0 to {max}")))
+    };
+    Ok((
+        ok(level, "optimize_level", crate::mesh3d::MAX_LEVEL)?,
+        ok(scheme, "optimize_scheme", 7)?,
+    ))
 }
 
 /// Sets the user sizing test (see `idm_sizing3d_fn`); `fn` NULL clears it (`user` is then

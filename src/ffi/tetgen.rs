@@ -154,19 +154,8 @@ impl idm_tetgen_switches {
         if self.optimize_max_dihedral.is_nan() {
             return Err(Failure::invalid("optimize_max_dihedral (o/) is NaN"));
         }
-        let optimize_level = u32::try_from(self.optimize_level).map_err(|_| {
-            Failure::invalid(format!(
-                "optimize_level (O) {} must be from 0 to {}",
-                self.optimize_level,
-                crate::mesh3d::MAX_LEVEL
-            ))
-        })?;
-        let optimize_scheme = u32::try_from(self.optimize_scheme).map_err(|_| {
-            Failure::invalid(format!(
-                "optimize_scheme (O<level>/<scheme>) {} must be from 0 to 7",
-                self.optimize_scheme
-            ))
-        })?;
+        let (optimize_level, optimize_scheme) =
+            crate::ffi::mesh3d::optimize_ints(self.optimize_level, self.optimize_scheme)?;
         let positive = |x: f64| (x > 0.0).then_some(x);
         Ok(TetSwitches {
             plc: self.plc != 0,

@@ -38,6 +38,7 @@ use crate::geometry::tet_dihedral_range;
 use crate::hash::FastSet;
 use crate::predicates::orient3d;
 use crate::progress::tick;
+use glam::DVec3;
 
 /// The largest optimisation level (number of passes).
 pub const MAX_LEVEL: u32 = 10;
@@ -379,8 +380,8 @@ impl Opt<'_> {
             let t = star[k];
             k += 1;
             let tv = self.m.tets[t as usize];
-            for i in 0..4 {
-                if tv[i] == v {
+            for (i, &u) in tv.iter().enumerate() {
+                if u == v {
                     continue;
                 }
                 let n = self.m.neighbors[t as usize][i];
@@ -453,15 +454,14 @@ impl Opt<'_> {
         if let Some(w) = worst {
             let tv = self.m.tets[w as usize];
             if let Some(i) = tv.iter().position(|&u| u == v) {
-                let [a, b, c] = FACE[i].map(|k| self.m.vertices[tv[k] as usize]);
-                let (e1, e2) = (sub(b, a), sub(c, a));
-                let nrm = cross(e1, e2);
-                let len2 = dot(nrm, nrm);
+                let [a, b, c] = FACE[i].map(|k| DVec3::from(self.m.vertices[tv[k] as usize]));
+                let nrm = (b - a).cross(c - a);
+                let len2 = nrm.length_squared();
                 if len2 > 0.0 {
-                    // Signed distance of p over the face's plane, along the normal's side.
-                    let h = dot(sub(p, a), nrm) / len2;
+                    // p's offset from the face's plane, along the normal.
+                    let h = (DVec3::from(p) - a).dot(nrm) / len2;
                     for s in [0.5, 1.0] {
-                        candidates.push(std::array::from_fn(|k| p[k] + s * h * nrm[k]));
+                        candidates.push((DVec3::from(p) + s * h * nrm).to_array());
                     }
                 }
             }
@@ -508,11 +508,12 @@ impl Opt<'_> {
             if scheme & 2 != 0 {
                 let tv = self.m.tets[t as usize];
                 for v in tv {
-                    if self.free_vertex[v as usize] && self.tried_vertices.insert(v) {
-                        if self.try_smooth(v) {
-                            changes += 1;
-                            break;
-                        }
+                    if self.free_vertex[v as usize]
+                        && self.tried_vertices.insert(v)
+                        && self.try_smooth(v)
+                    {
+                        changes += 1;
+                        break;
                     }
                 }
             }
@@ -577,22 +578,6 @@ impl Opt<'_> {
             }
         }
     }
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// Optimises `mesh` in place with `level` passes of the operations in `scheme` (bits: 1 flips,

@@ -257,6 +257,15 @@ fn command_line_o_switches() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(!o.status.success() && err.contains(words), "{sw}: {err}");
     }
+    // A point set gets its Delaunay tetrahedralization: -O is refused, not ignored.
+    std::fs::write(
+        d.join("pts.node"),
+        "5 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n5 1 1 1\n",
+    )
+    .unwrap();
+    let o = cli_common::idmesh(&d, &["tetgen", "-O", "pts"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("-O"), "{err}");
     let out = cli_common::ok(&cli_common::idmesh(
         &d,
         &["tetgen", "-pq1.414/0a0.001O3VC", "3d_cube.poly"],

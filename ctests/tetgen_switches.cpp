@@ -18,6 +18,9 @@
 //       parsed into optlevel, optscheme and optmaxdihedral; optlevel 3 with optmaxdihedral 140
 //       set in the fields makes the cube's smallest dihedral angle larger and its largest not
 //       larger, keeping the volume; a bad optscheme throws 10.
+//   T   (epsilon) the cube with its top corner lowered by 1e-9: kept with TetGen's default
+//       epsilon (idmesh is exact unless asked), moved onto the top with another epsilon or an
+//       explicit -T; an epsilon above 0.01 throws 10.
 #include <tetgen.h>
 
 #include <algorithm>
@@ -330,6 +333,57 @@ static void test_convex() {
   check(std::fabs(vol[1] - 3.5) < 1e-12, "c: the mesh fills the convex hull (volume 3.5)");
 }
 
+// The cube with corner 6 (x = 0, y = 1, z = 1) lowered by 1e-9 and its top split along 4-7.
+static double lowered_corner_z(tetgenbehavior *b, const char *switches) {
+  tetgenio in, out;
+  cube(in);
+  in.pointlist[3 * 6 + 2] -= 1e-9;
+  tetgenio::facet *top = &in.facetlist[1];
+  top->polygonlist[0].numberofvertices = 3;  // 4 5 7; the other half added below
+  top->polygonlist[0].vertexlist[2] = 7;
+  tetgenio::facet *facets = new tetgenio::facet[7];
+  int *markers = new int[7];
+  for (int f = 0; f < 6; f++) {
+    facets[f] = in.facetlist[f];
+    markers[f] = in.facetmarkerlist[f];
+  }
+  tetgenio::init(&facets[6]);
+  facets[6].numberofpolygons = 1;
+  facets[6].polygonlist = new tetgenio::polygon[1];
+  tetgenio::init(&facets[6].polygonlist[0]);
+  facets[6].polygonlist[0].numberofvertices = 3;
+  facets[6].polygonlist[0].vertexlist = new int[3]{4, 7, 6};
+  markers[6] = markers[1];
+  delete[] in.facetlist;  // the polygons now belong to `facets`
+  delete[] in.facetmarkerlist;
+  in.facetlist = facets;
+  in.facetmarkerlist = markers;
+  in.numberoffacets = 7;
+  if (b != nullptr)
+    tetrahedralize(b, &in, &out);
+  else
+    tetrahedralize((char *)switches, &in, &out);
+  return out.pointlist[3 * 6 + 2];
+}
+
+static void test_epsilon() {
+  tetgenbehavior b;
+  b.plc = 1;
+  b.quiet = 1;
+  check(lowered_corner_z(&b, nullptr) == 1 - 1e-9, "default epsilon: the input is kept exactly");
+  b.epsilon = 1e-7;
+  check(lowered_corner_z(&b, nullptr) == 1, "epsilon 1e-7: the corner is moved onto the top");
+  check(lowered_corner_z(nullptr, "pQT") == 1, "-T: TetGen's default tolerance, asked for");
+  b.epsilon = 0.5;
+  int code = 0;
+  try {
+    lowered_corner_z(&b, nullptr);
+  } catch (int c) {
+    code = c;
+  }
+  check(code == 10, "epsilon 0.5 throws 10");
+}
+
 // Smallest and largest dihedral angle of the output, degrees.
 static void dihedral_range(const tetgenio &io, double *lo, double *hi) {
   *lo = 180;
@@ -404,6 +458,7 @@ static void test_optimize() {
 int main() {
   try {
     test_optimize();
+    test_epsilon();
     test_constraints(0);
     test_constraints(1);
     test_convex();

@@ -2,7 +2,8 @@
  * A C client of compat/triangle/triangle.h written as Triangle's users write one: REAL, VOID
  * and ANSI_DECLARATORS defined before the include, a triangulateio zeroed by hand, outputs
  * freed with trifree. It meshes a square with a hole, an internal segment and two regions in
- * 1-based and 0-based numbering and prints each input and mesh (read by
+ * 1-based and 0-based numbering, remeshes a mesh with -r (T lines: the given triangles, their
+ * attribute and area bound), and prints each input and mesh (read by
  * triangle_compare.py, which meshes the same input with Triangle itself and compares), then
  * feeds bad input and checks that each call returns with empty outputs and a message, and that
  * the next input still meshes. Exit status 0 when every check here passed.
@@ -87,6 +88,10 @@ static void dump(const char *sw, const struct triangulateio *in, const struct tr
   for (i = 0; i < in->numberofregions; i++)
     printf("R %.17g %.17g %.17g %.17g\n", in->regionlist[4 * i], in->regionlist[4 * i + 1],
            in->regionlist[4 * i + 2], in->regionlist[4 * i + 3]);
+  for (i = 0; in->trianglelist != NULL && i < in->numberoftriangles; i++)
+    printf("T %d %d %d %.17g %.17g\n", in->trianglelist[3 * i] - first,
+           in->trianglelist[3 * i + 1] - first, in->trianglelist[3 * i + 2] - first,
+           in->triangleattributelist[i], in->trianglearealist[i]);
   for (i = 0; i < out->numberofpoints; i++)
     printf("p %.17g %.17g %d\n", out->pointlist[2 * i], out->pointlist[2 * i + 1],
            out->pointmarkerlist[i]);
@@ -154,9 +159,9 @@ static void bad_inputs(void) {
   int segments[22];
   REAL attrs[10] = {0};
   fill_domain(&in, 1, segments);
-  expect_failure("prQ", &in, "-r");    /* refused by name */
+  expect_failure("prQ", &in, "no triangles"); /* -r without a mesh to refine */
+  expect_failure("pwQ", &in, "-w");    /* refused by name */
   expect_failure("pkQ", &in, "-k");    /* unknown to Triangle */
-  expect_failure("pYYQ", &in, "-YY");
   expect_failure("pq30a-1Q", &in, "'-'");
   segments[5] = 99;                    /* a segment to a missing point */
   expect_failure("pQ", &in, "segment");
@@ -304,6 +309,99 @@ static void point_set(void) {
   free_out(&out);
 }
 
+static double tri_area(const double *p, const int *t) {
+  const double *a = p + 2 * t[0], *b = p + 2 * t[1], *c = p + 2 * t[2];
+  return 0.5 * fabs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+}
+
+/* -r: a mesh of the domain is remeshed with per-triangle area bounds (trianglearealist) small
+ * in the strip x < 1 (attribute 1) only: its points stay at their indices, each attribute's
+ * area is kept, and only the strip gets triangles below its bound. Then bad given meshes. */
+static void refine_given(void) {
+  struct triangulateio in, out, given, again;
+  int segments[22], i, small = 0;
+  double *bounds, area[3] = {0, 0, 0}, coarse = 0;
+  char sw1[] = "pq30a0.05AzQ", sw2[] = "rq30aenzQ", sw3[] = "rzQ";
+  fill_domain(&in, 0, segments);
+  clear(&out);
+  triangulate(sw1, &in, &out, NULL);
+  CHECK(out.numberoftriangles > 0, "-r: first mesh: %s", idm_last_error());
+  bounds = (double *)malloc((size_t)out.numberoftriangles * sizeof *bounds);
+  for (i = 0; i < out.numberoftriangles; i++)
+    bounds[i] = out.triangleattributelist[i] == 1.0 ? 0.005 : -1;
+  clear(&given);
+  given.numberofpoints = out.numberofpoints;
+  given.pointlist = out.pointlist;
+  given.pointmarkerlist = out.pointmarkerlist;
+  given.numberoftriangles = out.numberoftriangles;
+  given.numberofcorners = 3;
+  given.trianglelist = out.trianglelist;
+  given.numberoftriangleattributes = 1;
+  given.triangleattributelist = out.triangleattributelist;
+  given.trianglearealist = bounds;
+  clear(&again);
+  triangulate(sw2, &given, &again, NULL);
+  CHECK(strcmp(idm_last_error(), "") == 0, "-ra: %s", idm_last_error());
+  CHECK(again.numberofpoints > out.numberofpoints && again.numberoftriangleattributes == 1,
+        "-ra: %d points from %d", again.numberofpoints, out.numberofpoints);
+  for (i = 0; i < out.numberofpoints && i < again.numberofpoints; i++)
+    CHECK(again.pointlist[2 * i] == out.pointlist[2 * i] &&
+              again.pointlist[2 * i + 1] == out.pointlist[2 * i + 1] &&
+              again.pointmarkerlist[i] == out.pointmarkerlist[i],
+          "-ra: point %d moved", i);
+  for (i = 0; i < again.numberoftriangles; i++) {
+    double a = tri_area(again.pointlist, again.trianglelist + 3 * i), at;
+    at = again.triangleattributelist[i];
+    CHECK(at == 1.0 || at == 2.0, "-ra: attribute %g", at);
+    area[at == 1.0 ? 1 : 2] += a;
+    if (at == 1.0) {
+      CHECK(a <= 0.005, "-ra: triangle %d of the strip has area %g", i, a);
+      small++;
+    } else if (a > coarse) {
+      coarse = a;
+    }
+  }
+  CHECK(fabs(area[1] - 4) < 1e-12 && fabs(area[2] - 11) < 1e-12, "-ra: areas %g %g", area[1],
+        area[2]);
+  CHECK(small >= 4 / 0.005 && coarse > 0.01, "-ra: %d small triangles, largest other %g", small,
+        coarse);
+  if (again.numberoftriangles > 0) dump(sw2, &given, &again, 0);
+  free_out(&again);
+  /* Bad given meshes: an error naming the item, empty outputs, never a crash. */
+  given.trianglelist[4] = out.numberofpoints + 3;
+  triangulate(sw3, &given, &again, NULL);
+  CHECK(again.numberoftriangles == 0 && again.trianglelist == NULL &&
+            strstr(idm_last_error(), "triangle 1 has corner") != NULL,
+        "-r bad corner: %s", idm_last_error());
+  given.trianglelist = NULL;
+  triangulate(sw3, &given, &again, NULL);
+  CHECK(again.numberoftriangles == 0 && strstr(idm_last_error(), "no triangles") != NULL,
+        "-r without triangles: %s", idm_last_error());
+  given.trianglelist = out.trianglelist;
+  given.trianglearealist = NULL;
+  triangulate(sw2, &given, &again, NULL);
+  CHECK(again.numberoftriangles == 0 && strstr(idm_last_error(), "trianglearealist") != NULL,
+        "-ra without trianglearealist: %s", idm_last_error());
+  free(bounds);
+  free_out(&out);
+}
+
+/* -YY: no Steiner point on any segment, the internal one (x = 1) included. */
+static void no_segment_steiner(void) {
+  struct triangulateio in, out;
+  int segments[22], i;
+  char sw[] = "pq30a0.05YYzQ";
+  fill_domain(&in, 0, segments);
+  clear(&out);
+  triangulate(sw, &in, &out, NULL);
+  CHECK(strcmp(idm_last_error(), "") == 0 && out.numberoftriangles > 0, "-YY: %s",
+        idm_last_error());
+  CHECK(out.numberofsegments == 11, "-YY: %d segments, 11 given", out.numberofsegments);
+  for (i = 0; i < 2 * out.numberofsegments; i++)
+    CHECK(out.segmentlist[i] < 10, "-YY: segment end %d is a Steiner point", out.segmentlist[i]);
+  free_out(&out);
+}
+
 int main(void) {
   bad_inputs();
   mesh_domain("pq30a0.02AenQ", 1);
@@ -312,6 +410,8 @@ int main(void) {
   mesh_domain("pq25a0.05AenzQiFlsX", 0);
   point_set();
   jettison();
+  refine_given();
+  no_segment_steiner();
   if (failures) fprintf(stderr, "%d checks failed\n", failures);
   return failures ? 1 : 0;
 }

@@ -4,7 +4,9 @@ each input again with Triangle itself (PyPI `triangle`) with the same switches, 
 both are valid meshes of the same domain: input vertices kept at their indices, the same area
 per regional attribute, the same length of boundary per segment marker, and, for idmesh, the
 quality and size bounds, neighbours and edges consistent with the triangles. Not identical
-meshes: idmesh's output is conforming Delaunay, Triangle's constrained."""
+meshes: idmesh's output is conforming Delaunay, Triangle's constrained. A case with given
+triangles (T lines) is a refinement (-r): Triangle gets the same triangles, attributes and
+area bounds (PyPI triangle's triangle_max_area)."""
 import math
 import re
 import subprocess
@@ -21,8 +23,8 @@ def parse(text):
         if not f:
             continue
         if f[0] == "case":
-            cur = {"sw": f[1], "P": [], "G": [], "H": [], "R": [], "p": [], "t": [], "n": [],
-                   "s": [], "e": []}
+            cur = {"sw": f[1], "P": [], "G": [], "H": [], "R": [], "T": [], "p": [], "t": [],
+                   "n": [], "s": [], "e": []}
         elif f[0] == "end":
             cases.append(cur)
             cur = None
@@ -84,19 +86,35 @@ def check_case(c):
         tri_in["holes"] = np.array(c["H"])
     if c["R"]:
         tri_in["regions"] = np.array(c["R"])
+    if c["T"]:
+        # -r: the given mesh, its attribute and its area bound per triangle.
+        tri_in["triangles"] = np.array([[int(x) for x in r[:3]] for r in c["T"]])
+        tri_in["triangle_attributes"] = np.array([[r[3]] for r in c["T"]])
+        tri_in["triangle_max_area"] = np.array([r[4] for r in c["T"]])
     ref_sw = re.sub("[QzuenV]", "", sw)
     ref = triangle.triangulate(tri_in, ref_sw)
     rxy = ref["vertices"].tolist()
     rtris = ref["triangles"].tolist()
     rattrs = ref["triangle_attributes"][:, 0].tolist()
-    rsegs = ref["segments"].tolist()
-    rmarks = ref["segment_markers"][:, 0].tolist()
+    rsegs = ref["segments"].tolist() if "segments" in ref else []
+    rmarks = ref["segment_markers"][:, 0].tolist() if "segments" in ref else []
 
     if xy[: len(P)] != P:
         errors.append("idmesh moved or renumbered input vertices")
     if rxy[: len(P)] != P:
         errors.append("Triangle moved input vertices (unexpected)")
-    close(by_attr(xy, tris, attrs), by_attr(rxy, rtris, rattrs), "area per attribute", errors)
+    if c["T"]:
+        # -r: Triangle mixes the attributes of triangles it splits across the edges between
+        # attributes (without -p they are not segments); idmesh keeps them apart. Compare the
+        # total, and idmesh's areas per attribute with the given mesh's.
+        close({0: sum(by_attr(xy, tris, attrs).values())},
+              {0: sum(by_attr(rxy, rtris, rattrs).values())}, "total area", errors)
+        given = [[int(x) for x in r[:3]] for r in c["T"]]
+        close(by_attr(xy, tris, attrs), by_attr(P, given, [r[3] for r in c["T"]]),
+              "area per attribute (given mesh)", errors)
+    else:
+        close(by_attr(xy, tris, attrs), by_attr(rxy, rtris, rattrs), "area per attribute",
+              errors)
     close(by_marker(xy, segs, smarks), by_marker(rxy, rsegs, rmarks), "boundary per marker",
           errors)
     # Quality and size bounds asked for.
@@ -105,6 +123,11 @@ def check_case(c):
     a = re.search(r"a([0-9.]+)", sw)
     amax = float(a.group(1)) if a else math.inf
     region_area = {r[2]: r[3] for r in c["R"]} if re.search(r"a(?![0-9.])", sw) else {}
+    if c["T"] and re.search(r"a(?![0-9.])", sw):
+        # -ra: the bound per attribute, when the given triangles of each attribute share one.
+        given = {(r[3], r[4]) for r in c["T"]}
+        if len({a for a, _ in given}) == len(given):
+            region_area = dict(given)
     for t, at in zip(tris, attrs):
         ar = area(xy, t)
         if ar <= 0:
@@ -127,7 +150,8 @@ def check_case(c):
     out_edges = [frozenset((int(r[0]), int(r[1]))) for r in c["e"]]
     if len(out_edges) != len(tri_edges) or set(out_edges) != tri_edges:
         errors.append(f"{len(out_edges)} edges output, {len(tri_edges)} in the triangles")
-    for e, r in zip(out_edges, c["e"]):
+    # (With -r and no -p the segments idmesh made are not output, but mark the edges.)
+    for e, r in zip(out_edges, c["e"] if not c["T"] or c["s"] else []):
         if int(r[2]) != seg_mark.get(e, 0):
             errors.append(f"edge {sorted(e)} marker {int(r[2])}, segment says {seg_mark.get(e, 0)}")
     print(f"{sw}: idmesh {len(xy)} vertices {len(tris)} triangles; Triangle ({ref_sw}) "

@@ -378,6 +378,12 @@ typedef struct idm_options2d {
    * reached refine returns `IDM_INCOMPLETE`. Default -1.
    */
   int64_t max_steiner;
+  /**
+   * Forbid Steiner points on every segment, interior ones included (Triangle's `-YY`);
+   * implies `no_boundary_steiner`, with the same consequences next to every segment.
+   * Default 0. (Appended after 0.2.0.)
+   */
+  int32_t no_segment_steiner;
 } idm_options2d;
 
 /**
@@ -510,6 +516,17 @@ typedef struct idm_options3d {
    * Number of triples in `segment_constraints`. Default 0.
    */
   size_t num_segment_constraints;
+  /**
+   * Merge neighbouring facets with the same marker that are coplanar within this relative
+   * tolerance (TetGen's `-T<tol>`, whose default is 1e-8), exactly coplanar ones included:
+   * the vertices of nearly coplanar facets are moved exactly onto one plane (by at most
+   * about the tolerance times the facet's longest edge) and the shared edges are no longer
+   * input edges, so the output's vertices are the moved points (see the Rust
+   * `Options3::coplanar_tolerance`). Not with `keep_surface`. 0: no merging, coplanarity
+   * exact (the C API's default); must not be negative or NaN, and at most 0.01. Default 0.
+   * Appended after 0.2.0: a caller's older struct gets the default.
+   */
+  double coplanar_tolerance;
   /**
    * Mesh optimisation level (TetGen's `-O<level>`): 0 to 10 passes of flips and smoothing
    * of interior Steiner vertices after meshing, which improve the extreme dihedral angles
@@ -696,6 +713,11 @@ typedef struct idm_tetgen_switches {
    * `c`: mesh the convex hull of the input, keeping the PLC inside it.
    */
   int32_t convex_hull;
+  /**
+   * `T<tol>`: the relative tolerance for merging nearly coplanar facets (`T` alone: 1e-8);
+   * 0 when there is none (coplanarity decided exactly).
+   */
+  double coplanar_tolerance;
   /**
    * `O<level>`: mesh optimisation passes (flips and smoothing; the mesh is then not
    * Delaunay), 0 to 10; 0 when `O` is not given (idmesh's default: no optimisation).
@@ -942,6 +964,11 @@ typedef struct idm_triangle_switches {
    * `j`: leave the vertices that are in no triangle out of the output, renumbering the rest.
    */
   int32_t jettison;
+  /**
+   * `r`: remesh the given triangles (`idm_triangle_set_given_mesh`). With it, `options`
+   * applies the per-triangle area bounds when `a` has no number (`region_max_area`).
+   */
+  int32_t refine;
 } idm_triangle_switches;
 
 #ifdef __cplusplus
@@ -1742,7 +1769,7 @@ void idm_tetgen_items_free(struct idm_tetgen_items *p);
 /**
  * Parses a switch string as Triangle's `triangulate()` takes it (`"pq30a0.1zQ"`; a leading
  * `-` is tolerated) into `*out`. A switch Triangle does not know is `IDM_ERR_INVALID_ARGUMENT`;
- * one the C ABI cannot honour (`r YY w W`) is `IDM_ERR_UNSUPPORTED`; the message names
+ * one the C ABI cannot honour (`w W`) is `IDM_ERR_UNSUPPORTED`; the message names
  * it. Never ignores a switch.
  *
  * # Safety
@@ -1750,6 +1777,33 @@ void idm_tetgen_items_free(struct idm_tetgen_items *p);
  * for writing an `idm_triangle_switches`.
  */
 enum idm_status idm_triangle_parse_switches(const char *text, struct idm_triangle_switches *out);
+
+/**
+ * Triangle's `r`: makes the handle's input the PSLG that remeshes the given triangles
+ * (idmesh does not refine them in place; see `idmesh::switches::triangle::refine_input`).
+ * Call it after adding the points (and, with `p`, the segments) the triangles refer to: the
+ * handle's segments become those segments followed by the triangles' boundary edges
+ * (marker 1) and the edges between triangles of different attribute or area bound (marker
+ * 0); its holes and regions are replaced by hole seeds where the triangles leave an enclosed
+ * area uncovered and one region per connected group of triangles with one attribute and one
+ * area bound. Then refine as usual (set `region_attributes` to carry `attributes` to the
+ * output, `region_max_area` to apply `max_areas`).
+ *
+ * `triangles`: 3 corners per triangle, 0-based; `attributes` and `max_areas`: NULL or one
+ * per triangle (a bound of 0 or less is none). `first` is how the caller numbers items, used
+ * in messages (Triangle's 0 or 1). Errors name the triangle or edge: a corner out of range, a
+ * degenerate triangle, an edge of more than two triangles, triangles that overlap.
+ *
+ * # Safety
+ * `m` a live handle; `triangles` valid for `3*num_triangles` reads, `attributes` and
+ * `max_areas` NULL or valid for `num_triangles` reads.
+ */
+enum idm_status idm_triangle_set_given_mesh(struct idm_mesher2d *m,
+                                            const uint32_t *triangles,
+                                            size_t num_triangles,
+                                            const double *attributes,
+                                            const double *max_areas,
+                                            uint32_t first);
 
 /**
  * Records `message` (NULL: a generic one) as this thread's `idm_last_error()` and returns

@@ -156,9 +156,9 @@ fn unknown_switch_exits_1_with_a_message_naming_it() {
     let line = fails(&idmesh(&d.0, &["triangle", "-pqx", "sq.poly"]));
     assert!(line.contains("-x"), "{line}");
     assert!(!d.exists("sq.1.node"), "no output on error");
-    let line = fails(&idmesh(&d.0, &["triangle", "-pr", "sq.poly"]));
+    let line = fails(&idmesh(&d.0, &["triangle", "-pw", "sq.poly"]));
     assert!(
-        line.contains("-r") && line.contains("not supported"),
+        line.contains("-w") && line.contains("not supported"),
         "{line}"
     );
     let line = fails(&idmesh(&d.0, &["triangle", "-pa1e-5", "sq.poly"]));
@@ -608,10 +608,201 @@ fn pqy_refines_inside_but_never_splits_the_boundary() {
     }
 }
 
+/// The unit square split at x = 0.5 into two regions (attributes 1 and 2), with two interior
+/// points; 1-based.
+const TWO_REGIONS: &str = "\
+8 2 0 1
+1 0 0 1
+2 1 0 1
+3 1 1 1
+4 0 1 1
+5 0.5 0 1
+6 0.5 1 1
+7 0.2 0.2 0
+8 0.8 0.8 0
+7 1
+1 1 5 1
+2 5 2 1
+3 2 3 1
+4 3 6 1
+5 6 4 1
+6 4 1 1
+7 5 6 2
+0
+2
+1 0.25 0.5 1 0
+2 0.75 0.5 2 0
+";
+
+/// A mesh written by `idmesh triangle -e -n` (with `.poly` when `poly`), read back into a
+/// `TriMesh` for the exact validity check.
+fn read_trimesh(dir: &TempDir, stem: &str, num_input: usize, poly: bool) -> idmesh::TriMesh {
+    let node = parse_node(&dir.read(&format!("{stem}.node")), "node").unwrap();
+    let base = node.base;
+    let n = node.pslg.points.len();
+    let ele = parse_ele(&dir.read(&format!("{stem}.ele")), "ele", base, n).unwrap();
+    let idx = |s: &str| -> u32 {
+        let v: i64 = s.parse().unwrap();
+        if v < 0 {
+            idmesh::NONE
+        } else {
+            (v - base as i64) as u32
+        }
+    };
+    let neighbors = rows(&dir.read(&format!("{stem}.neigh")))
+        .iter()
+        .map(|r| [idx(&r[1]), idx(&r[2]), idx(&r[3])])
+        .collect();
+    let (segments, segment_markers) = if poly {
+        let text = dir.read(&format!("{stem}.poly"));
+        let p = parse_poly(&text, "poly", || Ok(node.clone())).unwrap();
+        (p.pslg.segments, p.pslg.segment_markers)
+    } else {
+        (Vec::new(), Vec::new())
+    };
+    idmesh::TriMesh {
+        vertices: node.pslg.points.clone(),
+        vertex_markers: node.pslg.point_markers.clone(),
+        num_input_vertices: num_input,
+        steiner_points: n - num_input,
+        triangles: ele.triangles,
+        neighbors,
+        triangle_attributes: ele.attributes,
+        segments,
+        segment_markers,
+        complete: true,
+    }
+}
+
+/// Total area per triangle attribute.
+fn area_per_attribute(m: &idmesh::TriMesh) -> Vec<(f64, f64)> {
+    let mut out: Vec<(f64, f64)> = Vec::new();
+    for (t, &tri) in m.triangles.iter().enumerate() {
+        let a = tri_area(&m.vertices, tri);
+        let k = m.triangle_attributes[t];
+        match out.iter_mut().find(|(x, _)| *x == k) {
+            Some((_, s)) => *s += a,
+            None => out.push((k, a)),
+        }
+    }
+    out.sort_by(|a, b| a.0.total_cmp(&b.0));
+    out
+}
+
 #[test]
-fn double_y_is_refused_naming_it() {
+fn r_remeshes_a_previous_mesh_keeping_points_regions_and_boundary() {
+    let d = TempDir::new("refine");
+    d.write("box.poly", TWO_REGIONS);
+    ok(&idmesh(&d.0, &["triangle", "-pq30a0.01AenQ", "box.poly"]));
+    let m1 = read_trimesh(&d, "box.1", 8, true);
+    m1.validate().unwrap();
+    let n1 = m1.vertices.len();
+    let areas = area_per_attribute(&m1);
+    assert_eq!(areas.len(), 2);
+    // As Triangle: FILE.1 is refined into FILE.2, attributes carried without -A.
+    ok(&idmesh(&d.0, &["triangle", "-rq30a0.001enQ", "box.1"]));
+    let m2 = read_trimesh(&d, "box.2", n1, false);
+    assert!(m2.triangles.len() > 5 * m1.triangles.len());
+    assert_eq!(
+        m2.vertices[..n1],
+        m1.vertices[..],
+        "input points keep their indices"
+    );
+    assert_eq!(m2.vertex_markers[..n1], m1.vertex_markers[..]);
+    for ((k1, a1), (k2, a2)) in areas.iter().zip(area_per_attribute(&m2)) {
+        assert_eq!(*k1, k2);
+        assert!((a1 - a2).abs() < 1e-12, "region {k1}: area {a2}, was {a1}");
+    }
+    for &t in &m2.triangles {
+        assert!(tri_area(&m2.vertices, t) <= 0.001);
+    }
+    // With -p the segments of box.1.poly are kept too and box.2.poly is written.
+    ok(&idmesh(&d.0, &["triangle", "-rpq30a0.001enQ", "box.1"]));
+    let m2 = read_trimesh(&d, "box.2", n1, true);
+    m2.validate().unwrap();
+    assert_eq!(m2.vertices[..n1], m1.vertices[..]);
+    assert_eq!(area_per_attribute(&m2).len(), 2);
+}
+
+#[test]
+fn ra_applies_the_area_file_per_triangle() {
+    let d = TempDir::new("refine-area");
+    d.write("box.poly", TWO_REGIONS);
+    ok(&idmesh(&d.0, &["triangle", "-pq30a0.01AnQ", "box.poly"]));
+    let m1 = read_trimesh(&d, "box.1", 8, false);
+    // A small bound on the triangles of region 2 only (-1: none).
+    let mut area = format!("{}\n", m1.triangles.len());
+    for (t, &k) in m1.triangle_attributes.iter().enumerate() {
+        let bound = if k == 2.0 { 0.0005 } else { -1.0 };
+        area.push_str(&format!("{} {bound}\n", t + 1));
+    }
+    d.write("box.1.area", &area);
+    ok(&idmesh(&d.0, &["triangle", "-raenQ", "box.1"]));
+    let m2 = read_trimesh(&d, "box.2", m1.vertices.len(), false);
+    let (mut small, mut other) = (0, 0.0f64);
+    for (t, &tri) in m2.triangles.iter().enumerate() {
+        let a = tri_area(&m2.vertices, tri);
+        if m2.triangle_attributes[t] == 2.0 {
+            assert!(a <= 0.0005, "triangle {t}: {a}");
+            small += 1;
+        } else {
+            other = other.max(a);
+        }
+    }
+    assert!(small >= 1000, "{small} triangles in region 2");
+    assert!(other > 0.002, "region 1 stays coarse: largest {other}");
+    // Bad input: errors naming the file and the item, no output, never a panic.
+    d.write("box.1.area", "3\n1 0.5\n2 x\n3 1\n");
+    let msg = fails(&idmesh(&d.0, &["triangle", "-raQ", "box.1"]));
+    assert!(msg.contains("box.1.area"), "{msg}");
+    std::fs::remove_file(d.path("box.1.area")).unwrap();
+    let msg = fails(&idmesh(&d.0, &["triangle", "-raQ", "box.1"]));
+    assert!(
+        msg.contains("box.1.area") && msg.contains("cannot read"),
+        "{msg}"
+    );
+    d.write("lone.node", &d.read("box.1.node"));
+    let msg = fails(&idmesh(&d.0, &["triangle", "-rQ", "lone"]));
+    assert!(
+        msg.contains("lone.ele") && msg.contains("cannot read"),
+        "{msg}"
+    );
+    let ele = d.read("box.1.ele").replacen("\n1 ", "\n1 999 ", 1);
+    d.write("bad.node", &d.read("box.1.node"));
+    d.write("bad.ele", &ele);
+    let msg = fails(&idmesh(&d.0, &["triangle", "-rQ", "bad"]));
+    assert!(msg.contains("bad.ele") && msg.contains("999"), "{msg}");
+    assert!(!d.exists("bad.1.node") && !d.exists("lone.1.node"));
+}
+
+#[test]
+fn double_y_keeps_every_segment_whole() {
     let d = TempDir::new("yy");
-    d.write("sq.poly", SQUARE);
-    let msg = fails(&idmesh(&d.0, &["triangle", "-pYY", "sq.poly"]));
-    assert!(msg.contains("-YY"), "{msg}");
+    d.write("box.poly", TWO_REGIONS);
+    ok(&idmesh(&d.0, &["triangle", "-pq30a0.01AQ", "box.poly"]));
+    // The points of that mesh (many of them on the segments) with the same segments.
+    let node = d.read("box.1.node");
+    let n = header(&node)[0].parse::<usize>().unwrap();
+    let poly = TWO_REGIONS.replacen("8 2 0 1", "0 2 0 1", 1);
+    let poly: String = poly
+        .lines()
+        .enumerate()
+        .filter(|(i, _)| *i == 0 || *i > 8)
+        .map(|(_, l)| format!("{l}\n"))
+        .collect();
+    d.write("pts.node", &node);
+    d.write("pts.poly", &poly);
+    for sw in ["-pq30a0.002YYenQ", "-pq30a0.002YenQ"] {
+        ok(&idmesh(&d.0, &["triangle", sw, "pts.poly"]));
+        let m = read_trimesh(&d, "pts.1", n, true);
+        m.validate_constrained().unwrap();
+        assert!(
+            m.steiner_points > 50,
+            "{sw}: {} Steiner points",
+            m.steiner_points
+        );
+        let split = m.segments.iter().flatten().any(|&v| v as usize >= n);
+        // -Y may split the interior segment x = 0.5, -YY splits none.
+        assert_eq!(split, !sw.contains("YY"), "{sw}");
+    }
 }

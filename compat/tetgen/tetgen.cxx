@@ -10,6 +10,7 @@
 
 #include <idmesh.h>
 
+#include <cmath>
 #include <exception>
 #include <new>
 #include <string>
@@ -220,7 +221,12 @@ std::string switch_string(const tetgenbehavior *b) {
     snprintf(num, sizeof num, " o/%.17f ", b->optmaxdihedral);
     s += num;
   }
-  flag(b->epsilon != 1.0e-8, "T");
+  // TetGen's default epsilon stands for "no -T": idmesh decides coplanarity exactly unless a
+  // tolerance is asked for (see `apply` for an explicit -T1e-8).
+  if (b->epsilon != 1.0e-8) {
+    snprintf(num, sizeof num, " T%.17g ", b->epsilon);
+    s += num;
+  }
   if (b->steinerleft >= 0) {
     snprintf(num, sizeof num, " S%d ", b->steinerleft);
     s += num;
@@ -260,6 +266,10 @@ void apply(tetgenbehavior *b, const idm_tetgen_switches &w) {
   b->metric = w.metric;
   b->order = w.order2 ? 2 : 1;
   b->convex = w.convex_hull;
+  // An explicit -T (or -T1e-8) is kept one ulp above TetGen's default, which stands for "not
+  // given" in `switch_string`: the same tolerance, not lost on the way back.
+  if (w.coplanar_tolerance > 0)
+    b->epsilon = w.coplanar_tolerance == 1.0e-8 ? std::nextafter(1.0e-8, 1.0) : w.coplanar_tolerance;
   b->optlevel = w.optimize_level;
   b->optscheme = w.optimize_scheme;
   b->optmaxdihedral = w.optimize_max_dihedral;

@@ -117,6 +117,8 @@ static idm_status add_input(idm_mesher2d *m, const idm_triangle_switches *sw,
     free(ab);
     if (st != IDM_OK) return st;
   }
+  /* With -r, as in Triangle, the holes and regions play no part: the given mesh has them. */
+  if (sw->refine) return IDM_OK;
   if (!sw->ignore_holes) {
     st = idm_mesher2d_add_holes(m, in->holelist, (size_t)in->numberofholes);
     if (st != IDM_OK) return st;
@@ -143,6 +145,56 @@ static idm_status add_input(idm_mesher2d *m, const idm_triangle_switches *sw,
     free(attr);
     free(area);
   }
+  return st;
+}
+
+/* -r: hands the given triangles (in->trianglelist, their first attribute and, with -a without
+ * a number, in->trianglearealist) to the library, which remeshes them (see
+ * idm_triangle_set_given_mesh). */
+static idm_status add_given_mesh(idm_mesher2d *m, const idm_triangle_switches *sw,
+                                 const struct triangulateio *in, int first) {
+  size_t n, i, k, corners;
+  uint32_t *tri;
+  const double *areas = NULL;
+  idm_status st;
+  if (in->numberoftriangles < 0 || in->numberofcorners < 0 || in->numberoftriangleattributes < 0)
+    return fail(IDM_ERR_INVALID_ARGUMENT, "-r: a triangle, corner or attribute count is negative");
+  if (in->numberoftriangles == 0 || in->trianglelist == NULL)
+    return fail(IDM_ERR_INVALID_INPUT, "-r: no triangles given (in->trianglelist)");
+  if (in->numberofcorners != 3 && in->numberofcorners != 6)
+    return fail(IDM_ERR_INVALID_INPUT, "-r: in->numberofcorners must be 3 or 6");
+  if (in->numberoftriangleattributes > 1)
+    return fail(IDM_ERR_UNSUPPORTED,
+                "-r: in->numberoftriangleattributes is above 1: idmesh carries one attribute");
+  if (in->numberoftriangleattributes == 1 && in->triangleattributelist == NULL)
+    return fail(IDM_ERR_NULL_POINTER, "-r: in->triangleattributelist is NULL");
+  if (sw->options.region_max_area) {
+    if (in->trianglearealist == NULL)
+      return fail(IDM_ERR_NULL_POINTER, "-ra: in->trianglearealist is NULL");
+    areas = in->trianglearealist;
+  }
+  n = (size_t)in->numberoftriangles;
+  corners = (size_t)in->numberofcorners;
+  tri = (uint32_t *)alloc(3 * n, sizeof *tri);
+  if (tri == NULL) return fail(IDM_ERR_INVALID_ARGUMENT, "out of memory copying the triangles");
+  for (i = 0; i < n; i++) {
+    for (k = 0; k < 3; k++) {
+      int v = in->trianglelist[corners * i + k];
+      if (v < first) {
+        char msg[160];
+        snprintf(msg, sizeof msg, "-r: triangle %zu has corner %d, below the first number %d",
+                 i + (size_t)first, v, first);
+        free(tri);
+        return fail(IDM_ERR_INVALID_INPUT, msg);
+      }
+      tri[3 * i + k] = (uint32_t)(v - first);
+    }
+  }
+  st = idm_triangle_set_given_mesh(m, tri, n,
+                                   in->numberoftriangleattributes == 1 ? in->triangleattributelist
+                                                                       : NULL,
+                                   areas, (uint32_t)first);
+  free(tri);
   return st;
 }
 
@@ -364,7 +416,15 @@ static idm_status run(char *triswitches, struct triangulateio *in, struct triang
   /* Triangle splits crossing segments at their intersection. */
   sw->options.split_crossings = 1;
   if ((st = idm_mesher2d_new(&m)) != IDM_OK) return st;
+  if (sw->refine) {
+    /* The given triangles' attributes are carried over (as Triangle does, A or not); c has
+     * no effect, the domain being the given triangles. */
+    int attributes = in != NULL && in->numberoftriangleattributes > 0;
+    sw->region_attributes = sw->options.region_attributes = attributes;
+    sw->convex_hull = sw->options.convex_hull = 0;
+  }
   st = add_input(m, sw, in, first);
+  if (st == IDM_OK && sw->refine) st = add_given_mesh(m, sw, in, first);
   if (st == IDM_OK) st = idm_mesher2d_set_options(m, &sw->options);
   if (st == IDM_OK && sw->user_test) st = idm_mesher2d_set_sizing(m, user_test, NULL);
   if (st == IDM_OK) {

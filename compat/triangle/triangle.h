@@ -9,7 +9,9 @@
  *   - Errors never exit: where Triangle prints a message and calls exit(1), triangulate()
  *     prints the message on stderr (unless -Q), leaves every output empty (counts 0, no array
  *     allocated) and returns; idm_last_error() (declared in idmesh.h) gives the message.
- *   - Switches idmesh cannot honour (r YY) are refused by name as above, never ignored.
+ *   - Switches idmesh cannot honour (w W) are refused by name as above, never ignored. r is
+ *     honoured differently: the given triangles (trianglelist, their first attribute,
+ *     trianglearealist with a) are remeshed, not refined in place; points keep their indices.
  *     i F l s X (algorithm and arithmetic choices of Triangle) are accepted and do nothing;
  *     g and I, which only affect Triangle's files, are accepted and do nothing (as in
  *     Triangle's library).
@@ -43,7 +45,7 @@ struct triangulateio {
 
   int *trianglelist;               /* In / out: numberofcorners per triangle. */
   double *triangleattributelist;   /* In / out: numberoftriangleattributes per triangle. */
-  double *trianglearealist;        /* In only (-r). */
+  double *trianglearealist;        /* In only (-r with -a): 1 per triangle, <= 0 none. */
   int *neighborlist;               /* Out only (-n): 3 per triangle, -1 on the boundary. */
   int numberoftriangles;           /* In / out. */
   int numberofcorners;             /* In / out. */

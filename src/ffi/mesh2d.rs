@@ -50,6 +50,10 @@ pub struct idm_options2d {
     /// Maximum number of Steiner points (Triangle's `-S`); `< 0` means no cap. When the cap is
     /// reached refine returns `IDM_INCOMPLETE`. Default -1.
     pub max_steiner: i64,
+    /// Forbid Steiner points on every segment, interior ones included (Triangle's `-YY`);
+    /// implies `no_boundary_steiner`, with the same consequences next to every segment.
+    /// Default 0. (Appended after 0.2.0.)
+    pub no_segment_steiner: i32,
 }
 
 /// A user sizing test (Triangle's `triunsuitable`): returns nonzero when the triangle with
@@ -77,7 +81,7 @@ pub type idm_sizing2d_fn = Option<
 pub struct idm_mesher2d {
     /// The input collected so far (markers always have one entry per item: the defaults 0
     /// for points and 1 for segments fill in for calls made without markers).
-    pslg: Pslg,
+    pub(crate) pslg: Pslg,
     /// The options, including the sizing callback.
     opts: Options,
     /// The output of the last successful (or `IDM_INCOMPLETE`) refine; dropped by any change
@@ -89,8 +93,9 @@ impl_handle!(
     idm_mesher2d { pslg, "idm_mesher2d_refine" },
     TriMesh,
     |h, mesh| {
-        // With -Y boundary segments are kept whole: the mesh is constrained Delaunay.
-        if h.opts.no_boundary_steiner {
+        // With -Y (-YY) boundary (all) segments are kept whole: the mesh is constrained
+        // Delaunay.
+        if h.opts.no_boundary_steiner || h.opts.no_segment_steiner {
             mesh.validate_constrained()
         } else {
             mesh.validate()
@@ -140,7 +145,8 @@ pub unsafe extern "C" fn idm_options2d_default_sized(out: *mut idm_options2d, st
 
 // SAFETY: `#[repr(C)]`, `struct_size: usize` first, only integer and float fields.
 unsafe impl SizedOptions for idm_options2d {
-    const BASELINE: usize = size_of::<idm_options2d>();
+    /// The 0.2.0 struct ended before `no_segment_steiner`.
+    const BASELINE: usize = std::mem::offset_of!(idm_options2d, no_segment_steiner);
     const NAME: &'static str = "idm_options2d";
 
     fn defaults() -> Self {
@@ -156,6 +162,7 @@ unsafe impl SizedOptions for idm_options2d {
             split_crossings: d.split_crossings.into(),
             no_boundary_steiner: d.no_boundary_steiner.into(),
             max_steiner: steiner_cap_to_c(d.max_steiner),
+            no_segment_steiner: d.no_segment_steiner.into(),
         }
     }
 }
@@ -311,6 +318,7 @@ pub unsafe extern "C" fn idm_mesher2d_set_options(
                 convex_hull: o.convex_hull != 0,
                 max_steiner: u64::try_from(o.max_steiner).ok(),
                 no_boundary_steiner: o.no_boundary_steiner != 0,
+                no_segment_steiner: o.no_segment_steiner != 0,
                 off_centers: o.off_centers != 0,
                 split_crossings: o.split_crossings != 0,
                 sizing: m.opts.sizing.take(),

@@ -87,6 +87,15 @@ pub struct idm_options3d {
     pub segment_constraints: *const f64,
     /// Number of triples in `segment_constraints`. Default 0.
     pub num_segment_constraints: usize,
+    /// Merge neighbouring facets with the same marker that are coplanar within this relative
+    /// tolerance (TetGen's `-T<tol>`, whose default is 1e-8), exactly coplanar ones included:
+    /// the vertices of nearly coplanar facets are moved exactly onto one plane (by at most
+    /// about the tolerance times the facet's longest edge) and the shared edges are no longer
+    /// input edges, so the output's vertices are the moved points (see the Rust
+    /// `Options3::coplanar_tolerance`). Not with `keep_surface`. 0: no merging, coplanarity
+    /// exact (the C API's default); must not be negative or NaN, and at most 0.01. Default 0.
+    /// Appended after 0.2.0: a caller's older struct gets the default.
+    pub coplanar_tolerance: f64,
     /// Mesh optimisation level (TetGen's `-O<level>`): 0 to 10 passes of flips and smoothing
     /// of interior Steiner vertices after meshing, which improve the extreme dihedral angles
     /// and never make them worse; the mesh is then no longer Delaunay (validate checks it
@@ -230,6 +239,7 @@ unsafe impl SizedOptions for idm_options3d {
             num_facet_constraints: 0,
             segment_constraints: std::ptr::null(),
             num_segment_constraints: 0,
+            coplanar_tolerance: d.coplanar_tolerance.unwrap_or(0.0),
             optimize_level: d.optimize_level as i32,
             optimize_scheme: d.optimize_scheme.unwrap_or(crate::mesh3d::DEFAULT_SCHEME) as i32,
             optimize_max_dihedral: d
@@ -465,8 +475,15 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
                 ("radius_edge", o.radius_edge),
                 ("max_volume", o.max_volume),
                 ("min_dihedral", o.min_dihedral),
+                ("coplanar_tolerance", o.coplanar_tolerance),
                 ("optimize_max_dihedral", o.optimize_max_dihedral),
             ])?;
+            if o.coplanar_tolerance < 0.0 {
+                return Err(Failure::invalid(format!(
+                    "option coplanar_tolerance {} is negative (0: no merging)",
+                    o.coplanar_tolerance
+                )));
+            }
             let (optimize_level, optimize_scheme) =
                 optimize_ints(o.optimize_level, o.optimize_scheme)?;
             let facets = input_slice(
@@ -489,7 +506,8 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
                 sizing: m.opts.sizing.take(),
                 progress: m.opts.progress.take(),
                 keep_surface: o.keep_surface != 0,
-                merge_coplanar: false,
+                merge_coplanar: o.coplanar_tolerance > 0.0,
+                coplanar_tolerance: positive(o.coplanar_tolerance),
                 verbose: o.verbose != 0,
                 min_dihedral: Some(o.min_dihedral),
                 surface_input: o.surface_input != 0,
@@ -1389,6 +1407,50 @@ mod tests {
         assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &old) }, IDM_OK);
         let h = &m.get_mut().opts;
         assert!(!h.convex_hull && h.facet_max_area.is_empty() && h.segment_max_length.is_empty());
+    }
+
+    #[test]
+    fn coplanar_tolerance_turns_the_merge_on_and_is_validated() {
+        let mut m = Handle::new();
+        let mut o = options(0.0, -1.0);
+        assert_eq!(o.coplanar_tolerance, 0.0, "exact by default");
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
+        let h = &m.get_mut().opts;
+        assert!(!h.merge_coplanar && h.coplanar_tolerance.is_none());
+        o.coplanar_tolerance = 1e-8;
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
+        let h = &m.get_mut().opts;
+        assert!(h.merge_coplanar && h.coplanar_tolerance == Some(1e-8));
+        for bad in [f64::NAN, -1e-8] {
+            let mut b = o;
+            b.coplanar_tolerance = bad;
+            assert_eq!(
+                unsafe { idm_mesher3d_set_options(m.0, &b) },
+                IDM_ERR_INVALID_ARGUMENT
+            );
+            assert!(
+                last_error().contains("coplanar_tolerance"),
+                "{}",
+                last_error()
+            );
+        }
+        // Too large: refused by refine, naming it.
+        let m = Handle::new();
+        load(&m, &split_cube());
+        o.coplanar_tolerance = 0.5;
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
+        assert_ne!(unsafe { idm_mesher3d_refine(m.0) }, IDM_OK);
+        assert!(
+            last_error().contains("coplanar tolerance"),
+            "{}",
+            last_error()
+        );
+        // An older struct gets the default: no merging.
+        let mut old = o;
+        old.struct_size = <idm_options3d as SizedOptions>::BASELINE;
+        let mut m = Handle::new();
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &old) }, IDM_OK);
+        assert!(m.get_mut().opts.coplanar_tolerance.is_none());
     }
 
     #[test]

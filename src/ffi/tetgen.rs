@@ -90,6 +90,9 @@ pub struct idm_tetgen_switches {
     pub order2: i32,
     /// `c`: mesh the convex hull of the input, keeping the PLC inside it.
     pub convex_hull: i32,
+    /// `T<tol>`: the relative tolerance for merging nearly coplanar facets (`T` alone: 1e-8);
+    /// 0 when there is none (coplanarity decided exactly).
+    pub coplanar_tolerance: f64,
     /// `O<level>`: mesh optimisation passes (flips and smoothing; the mesh is then not
     /// Delaunay), 0 to 10; 0 when `O` is not given (idmesh's default: no optimisation).
     pub optimize_level: i32,
@@ -134,6 +137,7 @@ impl From<&TetSwitches> for idm_tetgen_switches {
             metric: s.metric.into(),
             order2: s.order2.into(),
             convex_hull: s.convex_hull.into(),
+            coplanar_tolerance: s.coplanar_tolerance.unwrap_or(0.0),
             optimize_level: s
                 .optimize_level
                 .map_or(0, |l| l.min(i32::MAX as u32) as i32),
@@ -148,8 +152,9 @@ impl From<&TetSwitches> for idm_tetgen_switches {
 impl idm_tetgen_switches {
     /// Back to the parser's form; NaN bounds are refused.
     fn to_switches(self) -> Result<TetSwitches, Failure> {
-        if self.radius_edge.is_nan() || self.max_volume.is_nan() {
-            return Err(Failure::invalid("a switch value (q or a) is NaN"));
+        if self.radius_edge.is_nan() || self.max_volume.is_nan() || self.coplanar_tolerance.is_nan()
+        {
+            return Err(Failure::invalid("a switch value (q, a or T) is NaN"));
         }
         if self.optimize_max_dihedral.is_nan() {
             return Err(Failure::invalid("optimize_max_dihedral (o/) is NaN"));
@@ -168,6 +173,7 @@ impl idm_tetgen_switches {
             max_steiner: u64::try_from(self.max_steiner).ok(),
             keep_surface: self.keep_surface != 0,
             no_merge: self.no_merge != 0,
+            coplanar_tolerance: positive(self.coplanar_tolerance),
             zero_based: self.zero_based != 0,
             all_faces: self.all_faces != 0,
             edges: self.edges != 0,
@@ -1170,6 +1176,14 @@ mod tests {
         };
         assert_eq!(idm_tetgen_switches::from(&back), s);
         assert_eq!(parse("pqc").unwrap().convex_hull, 1);
+        let t = parse("pT1e-7").unwrap();
+        assert_eq!((t.coplanar_tolerance, s.coplanar_tolerance), (1e-7, 0.0));
+        let back = t.to_switches().ok().unwrap();
+        assert_eq!(back.coplanar_tolerance, Some(1e-7));
+        assert_eq!(back.options().coplanar_tolerance, Some(1e-7));
+        let (st, msg) = parse("pT2").unwrap_err();
+        assert_eq!(st, idm_status::IDM_ERR_INVALID_ARGUMENT);
+        assert!(msg.contains("-T"), "{msg}");
         let (st, msg) = parse("pqw").unwrap_err();
         assert_eq!(st, idm_status::IDM_ERR_UNSUPPORTED);
         assert!(msg.contains("-w"), "{msg}");

@@ -13,12 +13,15 @@
 use std::ffi::{c_char, CStr};
 
 use crate::ffi::{
-    check_out, guard, idm_mesher2d, idm_mesher2d_neighbors, idm_mesher2d_segments,
-    idm_mesher2d_triangles, idm_mesher2d_vertices, idm_options2d, idm_status, input_slice, Failure,
+    change, check_out, guard, idm_mesher2d, idm_mesher2d_neighbors, idm_mesher2d_segments,
+    idm_mesher2d_triangles, idm_mesher2d_vertices, idm_options2d, idm_status, input_slice,
+    optional_slice, Failure,
 };
 use crate::geometry::circumcenter;
 use crate::mesh2d::{TriMesh, NONE};
-use crate::switches::triangle::{output_segments, parse_library, Switches};
+use crate::switches::triangle::{
+    output_segments, parse_library, refine_input, GivenMesh, Switches,
+};
 
 /// The switches `idm_triangle_parse_switches` accepts: every Triangle switch whose meaning the
 /// C ABI can deliver. `i F l s` pick Triangle's internal algorithms and `X` its arithmetic,
@@ -26,7 +29,7 @@ use crate::switches::triangle::{output_segments, parse_library, Switches};
 /// a file only from Triangle's command line (its library writes nothing), likewise `I`.
 const C_HONOURED: &[&str] = &[
     "p", "q", "a", "u", "A", "c", "D", "j", "e", "v", "n", "g", "B", "P", "N", "E", "I", "O", "X",
-    "z", "o2", "Y", "S", "i", "F", "l", "s", "C", "Q", "V",
+    "z", "o2", "Y", "YY", "S", "r", "i", "F", "l", "s", "C", "Q", "V",
 ];
 
 /// Triangle's switches, parsed (`idm_triangle_parse_switches`). Booleans are `int32_t`: 0 or 1.
@@ -74,6 +77,9 @@ pub struct idm_triangle_switches {
     pub second_order: i32,
     /// `j`: leave the vertices that are in no triangle out of the output, renumbering the rest.
     pub jettison: i32,
+    /// `r`: remesh the given triangles (`idm_triangle_set_given_mesh`). With it, `options`
+    /// applies the per-triangle area bounds when `a` has no number (`region_max_area`).
+    pub refine: i32,
 }
 
 impl idm_triangle_switches {
@@ -94,6 +100,7 @@ impl idm_triangle_switches {
                 max_steiner: o
                     .max_steiner
                     .map_or(-1, |n| i64::try_from(n).unwrap_or(i64::MAX)),
+                no_segment_steiner: b(o.no_segment_steiner),
             },
             poly: b(s.poly),
             user_test: b(s.user_test),
@@ -114,13 +121,14 @@ impl idm_triangle_switches {
             voronoi: b(s.voronoi),
             second_order: b(s.second_order),
             jettison: b(s.jettison),
+            refine: b(s.refine),
         }
     }
 }
 
 /// Parses a switch string as Triangle's `triangulate()` takes it (`"pq30a0.1zQ"`; a leading
 /// `-` is tolerated) into `*out`. A switch Triangle does not know is `IDM_ERR_INVALID_ARGUMENT`;
-/// one the C ABI cannot honour (`r YY w W`) is `IDM_ERR_UNSUPPORTED`; the message names
+/// one the C ABI cannot honour (`w W`) is `IDM_ERR_UNSUPPORTED`; the message names
 /// it. Never ignores a switch.
 ///
 /// # Safety
@@ -147,6 +155,50 @@ pub unsafe extern "C" fn idm_triangle_parse_switches(
         unsafe { out.write(idm_triangle_switches::from_switches(&sw)) };
         Ok(())
     })
+}
+
+/// Triangle's `r`: makes the handle's input the PSLG that remeshes the given triangles
+/// (idmesh does not refine them in place; see `idmesh::switches::triangle::refine_input`).
+/// Call it after adding the points (and, with `p`, the segments) the triangles refer to: the
+/// handle's segments become those segments followed by the triangles' boundary edges
+/// (marker 1) and the edges between triangles of different attribute or area bound (marker
+/// 0); its holes and regions are replaced by hole seeds where the triangles leave an enclosed
+/// area uncovered and one region per connected group of triangles with one attribute and one
+/// area bound. Then refine as usual (set `region_attributes` to carry `attributes` to the
+/// output, `region_max_area` to apply `max_areas`).
+///
+/// `triangles`: 3 corners per triangle, 0-based; `attributes` and `max_areas`: NULL or one
+/// per triangle (a bound of 0 or less is none). `first` is how the caller numbers items, used
+/// in messages (Triangle's 0 or 1). Errors name the triangle or edge: a corner out of range, a
+/// degenerate triangle, an edge of more than two triangles, triangles that overlap.
+///
+/// # Safety
+/// `m` a live handle; `triangles` valid for `3*num_triangles` reads, `attributes` and
+/// `max_areas` NULL or valid for `num_triangles` reads.
+#[no_mangle]
+pub unsafe extern "C" fn idm_triangle_set_given_mesh(
+    m: *mut idm_mesher2d,
+    triangles: *const u32,
+    num_triangles: usize,
+    attributes: *const f64,
+    max_areas: *const f64,
+    first: u32,
+) -> idm_status {
+    // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+    unsafe {
+        change(m, |h| {
+            let tri: &[[u32; 3]] = input_slice(triangles.cast(), num_triangles, "triangles")?;
+            let attr = optional_slice(attributes, num_triangles, "attributes")?;
+            let area = optional_slice(max_areas, num_triangles, "max_areas")?;
+            let given = GivenMesh {
+                triangles: tri.to_vec(),
+                attributes: attr.map_or_else(Vec::new, <[f64]>::to_vec),
+                max_areas: area.map_or_else(Vec::new, <[f64]>::to_vec),
+            };
+            h.pslg = refine_input(&h.pslg, &given, area.is_some(), first)?;
+            Ok(())
+        })
+    }
 }
 
 /// Records `message` (NULL: a generic one) as this thread's `idm_last_error()` and returns
@@ -563,6 +615,13 @@ mod tests {
         assert_eq!(parse("pv").unwrap().voronoi, 1);
         assert_eq!(parse("po2").unwrap().second_order, 1);
         assert_eq!(parse("pj").unwrap().jettison, 1);
+        let s = parse("pYY").unwrap();
+        assert_eq!(s.options.no_segment_steiner, 1, "-YY reaches the mesher");
+        assert_eq!(
+            (s.no_boundary_steiner, s.options.no_boundary_steiner),
+            (1, 1)
+        );
+        assert_eq!(parse("pY").unwrap().options.no_segment_steiner, 0);
         let s = parse("-paAS10iFlsXgI").unwrap();
         assert_eq!((s.options.region_max_area, s.region_attributes), (1, 1));
         assert_eq!(s.options.max_steiner, 10);
@@ -570,7 +629,7 @@ mod tests {
 
     #[test]
     fn refuses_by_name() {
-        for (sw, name) in [("pr", "-r"), ("pYY", "-YY"), ("w", "-w")] {
+        for (sw, name) in [("w", "-w"), ("pW", "-W")] {
             let (st, msg) = parse(sw).unwrap_err();
             assert_eq!(st, IDM_ERR_UNSUPPORTED, "{sw}");
             assert!(msg.contains(name), "{sw}: {msg}");
@@ -729,6 +788,73 @@ mod tests {
             // The hull edges' outward normals (dy, -dx), one ray each.
             let want = [[-1.0, 0.0], [0.0, -1.0], [0.0, 1.0], [1.0, 0.0]];
             assert_eq!(ray_norms, want);
+            idm_mesher2d_free(m);
+        }
+    }
+
+    #[test]
+    fn a_given_mesh_is_remeshed_with_its_area_bounds() {
+        let mut m = std::ptr::null_mut();
+        unsafe {
+            assert_eq!(idm_mesher2d_new(&mut m), IDM_OK);
+            let xy = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.5, 0.5];
+            assert_eq!(
+                idm_mesher2d_add_points(m, xy.as_ptr(), 5, std::ptr::null()),
+                IDM_OK
+            );
+            // Four triangles around the centre; a small bound on the first only.
+            let tri: [u32; 12] = [0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4];
+            let attr = [1.0, 2.0, 2.0, 2.0];
+            let area = [0.001, -1.0, -1.0, -1.0];
+            let bad: [u32; 12] = [0, 1, 9, 1, 2, 4, 2, 3, 4, 3, 0, 4];
+            let st =
+                idm_triangle_set_given_mesh(m, bad.as_ptr(), 4, attr.as_ptr(), area.as_ptr(), 1);
+            assert_eq!(st, IDM_ERR_INVALID_ARGUMENT);
+            let msg = CStr::from_ptr(idm_last_error())
+                .to_string_lossy()
+                .into_owned();
+            assert!(msg.contains("triangle 1 has corner 10"), "{msg}");
+            let st =
+                idm_triangle_set_given_mesh(m, tri.as_ptr(), 4, attr.as_ptr(), area.as_ptr(), 0);
+            assert_eq!(st, IDM_OK);
+            let s = parse("raQ").unwrap();
+            assert_eq!((s.refine, s.options.region_max_area), (1, 1));
+            let mut o = s.options;
+            o.region_attributes = 1;
+            assert_eq!(idm_mesher2d_set_options(m, &o), IDM_OK);
+            assert_eq!(idm_mesher2d_refine(m), IDM_OK);
+            assert_eq!(idm_mesher2d_validate(m), IDM_OK);
+            let (mut t, mut nt, mut v, mut nv) = (std::ptr::null(), 0, std::ptr::null(), 0);
+            let (mut a, mut na) = (std::ptr::null(), 0);
+            assert_eq!(idm_mesher2d_triangles(m, &mut t, &mut nt), IDM_OK);
+            assert_eq!(idm_mesher2d_vertices(m, &mut v, &mut nv), IDM_OK);
+            assert_eq!(idm_mesher2d_triangle_attributes(m, &mut a, &mut na), IDM_OK);
+            let t = std::slice::from_raw_parts(t, 3 * nt);
+            let v = std::slice::from_raw_parts(v, 2 * nv);
+            let a = std::slice::from_raw_parts(a, na);
+            assert_eq!(v[..10], xy, "the given points keep their indices");
+            let (mut small, mut sum1) = (0, 0.0);
+            for k in 0..nt {
+                let p = |c: usize| {
+                    [
+                        v[2 * t[3 * k + c] as usize],
+                        v[2 * t[3 * k + c] as usize + 1],
+                    ]
+                };
+                let ar = 0.5 * crate::geometry::area2(p(0), p(1), p(2));
+                if a[k] == 1.0 {
+                    assert!(ar <= 0.001);
+                    small += 1;
+                    sum1 += ar;
+                } else {
+                    assert_eq!(a[k], 2.0);
+                }
+            }
+            assert!(
+                small >= 250 && (sum1 - 0.25f64).abs() < 1e-12,
+                "{small} {sum1}"
+            );
+            assert!(nt < small + 60, "the rest stays coarse: {nt} triangles");
             idm_mesher2d_free(m);
         }
     }

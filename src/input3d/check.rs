@@ -9,7 +9,7 @@
 //!    or hole seeds off the facet's plane, polygon edges that cross;
 //! 4. improper intersections between features, on the pairs a uniform grid finds close
 //!    (each feature entered only in the cells it meets): near linear for surface meshes
-//!    (fandisk.off, 13k triangles: about 0.1 s in release), slower when thousands of
+//!    (a 13k-triangle CAD model: about 0.1 s in release), slower when thousands of
 //!    features crowd a few cells, as along the rim of one facet with 20000 vertices (6 s).
 //!
 //! Every geometric decision is an exact predicate; floating point only narrows candidates.

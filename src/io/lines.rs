@@ -322,6 +322,52 @@ pub(crate) fn parse_int(s: &str) -> Option<i64> {
     }
 }
 
+/// What [`parse_bounds`] reads: the file's extension, the element in singular and plural,
+/// and the bounded quantity (for messages).
+pub(crate) struct BoundsFile {
+    pub ext: &'static str,
+    pub one: &'static str,
+    pub many: &'static str,
+    pub quantity: &'static str,
+}
+
+/// Parses a file of one bound per element, TetGen's `.vol` and Triangle's `.area`:
+/// `<#elements>`, then `<#> <maximum>` per element (-1 or 0: no bound; the number is not
+/// checked, as in both tools). It must have `num` lines; errors give the file and line.
+pub(crate) fn parse_bounds(
+    text: &str,
+    file: &str,
+    num: usize,
+    kind: &BoundsFile,
+) -> Result<Vec<f64>, ParseError> {
+    let BoundsFile {
+        ext,
+        one,
+        many,
+        quantity,
+    } = *kind;
+    let mut recs = Records::new(text, file);
+    let mut rec = recs.record();
+    recs.require(&mut rec, || format!("the header line '<#{many}>'"))?;
+    rec.at_most(1, &format!("the {ext} header"))?;
+    let n = rec.count(0, &format!("{one} count"))?;
+    if n != num {
+        return Err(rec.error(format!("{n} {quantity} bounds for {num} {many}")));
+    }
+    let mut out = Vec::with_capacity(capacity(n, text));
+    for k in 0..n {
+        recs.require(&mut rec, || format!("{one} {} of {n}", k + 1))?;
+        rec.at_most(2, &format!("a {ext} line"))?;
+        out.push(rec.f64(1, &format!("maximum {quantity}"))?);
+    }
+    if recs.next_into(&mut rec) {
+        return Err(rec.error(format!(
+            "unexpected data after the {many} declared in the header (is a count wrong?)"
+        )));
+    }
+    Ok(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -566,22 +566,13 @@ pub fn parse_neigh(
 /// Parses a `.vol` file (TetGen's volume bounds for `-ra`): `<#tetrahedra>`, then
 /// `<#> <maximum volume>` per tetrahedron (-1 or 0: no bound). It must have `num_tets` lines.
 pub fn parse_vol(text: &str, file: &str, num_tets: usize) -> Result<Vec<f64>, ParseError> {
-    let mut recs = Records::new(text, file);
-    let mut rec = recs.record();
-    recs.require(&mut rec, || "the header line '<#tetrahedra>'".into())?;
-    rec.at_most(1, "the .vol header")?;
-    let n = rec.count(0, "tetrahedron count")?;
-    if n != num_tets {
-        return Err(rec.error(format!("{n} volume bounds for {num_tets} tetrahedra")));
-    }
-    let mut out = Vec::with_capacity(capacity(n, text));
-    for k in 0..n {
-        recs.require(&mut rec, || format!("tetrahedron {} of {n}", k + 1))?;
-        rec.at_most(2, "a .vol line")?;
-        out.push(rec.f64(1, "maximum volume")?);
-    }
-    expect_end(&mut recs, &mut rec, "the tetrahedra declared in the header")?;
-    Ok(out)
+    let kind = super::lines::BoundsFile {
+        ext: ".vol",
+        one: "tetrahedron",
+        many: "tetrahedra",
+        quantity: "volume",
+    };
+    super::lines::parse_bounds(text, file, num_tets, &kind)
 }
 
 /// TetGen's `.var` file: facet constraints (marker, maximum area) and segment constraints

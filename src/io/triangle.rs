@@ -3,7 +3,8 @@
 //! Reading: [`read_node`] / [`read_poly`] (or [`parse_node`] / [`parse_poly`] on text) give a
 //! [`TriangleInput`] whose [`Pslg`](crate::Pslg) is 0-based and ready for
 //! [`triangulate`](crate::triangulate); its `base` records the file's numbering (0 or 1) so
-//! that output can be numbered the same way. [`parse_ele`] reads a mesh's triangles back.
+//! that output can be numbered the same way. [`parse_ele`] reads a mesh's triangles back and [`parse_area`] its
+//! per-triangle area bounds (both for `-r`).
 //!
 //! Writing: [`write_node`], [`write_ele`], [`write_poly`], [`write_edge`] and [`write_neigh`]
 //! write a [`TriMesh`](crate::TriMesh) in Triangle's output layouts; [`write_pslg_poly`] writes
@@ -18,7 +19,8 @@
 //! ```
 
 pub use super::triangle_read::{
-    parse_ele, parse_node, parse_poly, read_node, read_poly, EleData, TriangleInput,
+    parse_area, parse_ele, parse_node, parse_poly, read_area, read_ele, read_node, read_poly,
+    EleData, TriangleInput,
 };
 pub use super::triangle_write::{
     write_edge, write_ele, write_neigh, write_node, write_poly, write_poly_segments,

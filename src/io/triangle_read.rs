@@ -272,7 +272,8 @@ pub fn parse_poly(
 }
 
 /// Parses the text of an `.ele` file whose vertices are numbered from `base` and number
-/// `num_vertices`. Only 3-node triangles are accepted.
+/// `num_vertices`. 3-node and 6-node (`-o2`) triangles are accepted; of the latter the corners
+/// (the first three nodes) are kept, the other three checked for range.
 pub fn parse_ele(
     text: &str,
     file: &str,
@@ -286,11 +287,13 @@ pub fn parse_ele(
     })?;
     rec.at_most(3, "the .ele header")?;
     let nt = rec.count(0, "triangle count")?;
-    if let Some(k) = rec.opt_int(1, "nodes per triangle")? {
-        if k != 3 {
-            return Err(rec.error(format!("only 3 nodes per triangle are supported, got {k}")));
+    let nodes = match rec.opt_int(1, "nodes per triangle")? {
+        None | Some(3) => 3,
+        Some(6) => 6,
+        Some(k) => {
+            return Err(rec.error(format!("a triangle has 3 or 6 nodes, not {k}")));
         }
-    }
+    };
     let na = match rec.get(2) {
         Some(_) => rec.count(2, "attribute count")?,
         None => 0,
@@ -302,20 +305,23 @@ pub fn parse_ele(
         recs.require(&mut rec, || format!("triangle {} of {nt}", k + 1))?;
         rec.item = Some(("triangle", base as i64 + k as i64));
         let mut tri = [0u32; 3];
-        for (c, slot) in tri.iter_mut().enumerate() {
-            let v = rec.int(1 + c, "corner")?;
+        for c in 0..nodes {
+            let what = if c < 3 { "corner" } else { "node" };
+            let v = rec.int(1 + c, what)?;
             let idx = v.saturating_sub(base as i64);
             if idx < 0 || idx >= num_vertices as i64 {
                 return Err(rec.error(format!(
-                    "corner {v} is out of range: vertices are numbered {base} to {}",
+                    "{what} {v} is out of range: vertices are numbered {base} to {}",
                     num_vertices as i64 - 1 + base as i64
                 )));
             }
-            *slot = idx as u32;
+            if let Some(slot) = tri.get_mut(c) {
+                *slot = idx as u32;
+            }
         }
         triangles.push(tri);
         for a in 0..na {
-            attributes.push(rec.f64(4 + a, "attribute")?);
+            attributes.push(rec.f64(1 + nodes + a, "attribute")?);
         }
     }
     expect_end(&mut recs, &mut rec, "the triangles declared in the header")?;
@@ -326,10 +332,35 @@ pub fn parse_ele(
     })
 }
 
+/// Parses a `.area` file (Triangle's per-triangle area bounds for `-ra`): `<#triangles>`,
+/// then `<#> <maximum area>` per triangle (0 or less: no bound). It must have `num_triangles`
+/// lines.
+pub fn parse_area(text: &str, file: &str, num_triangles: usize) -> Result<Vec<f64>, ParseError> {
+    let kind = super::lines::BoundsFile {
+        ext: ".area",
+        one: "triangle",
+        many: "triangles",
+        quantity: "area",
+    };
+    super::lines::parse_bounds(text, file, num_triangles, &kind)
+}
+
 /// Reads a `.node` file.
 pub fn read_node(path: &Path) -> Result<TriangleInput, ParseError> {
     let text = read_text(path)?;
     parse_node(&text, &path.display().to_string())
+}
+
+/// Reads an `.ele` file whose vertices are numbered from `base` and number `num_vertices`.
+pub fn read_ele(path: &Path, base: u32, num_vertices: usize) -> Result<EleData, ParseError> {
+    let text = read_text(path)?;
+    parse_ele(&text, &path.display().to_string(), base, num_vertices)
+}
+
+/// Reads a `.area` file of `num_triangles` bounds.
+pub fn read_area(path: &Path, num_triangles: usize) -> Result<Vec<f64>, ParseError> {
+    let text = read_text(path)?;
+    parse_area(&text, &path.display().to_string(), num_triangles)
 }
 
 /// Reads a `.poly` file; when its vertex count is 0, the vertices are read from the `.node`
@@ -635,7 +666,49 @@ mod tests {
         assert_eq!(d.attributes, vec![0.5, -1.0]);
         let e = parse_ele("1 3 0\n1 1 2 5\n", "t.ele", 1, 4).unwrap_err();
         assert!(e.message.contains("corner 5 is out of range"), "{e}");
-        let e = parse_ele("1 6 0\n", "t.ele", 1, 4).unwrap_err();
-        assert!(e.message.contains("3 nodes"), "{e}");
+        let e = parse_ele("1 4 0\n", "t.ele", 1, 4).unwrap_err();
+        assert!(e.message.contains("3 or 6 nodes"), "{e}");
+    }
+
+    #[test]
+    fn area_files_give_one_bound_per_triangle_and_errors_name_file_and_line() {
+        let a = parse_area("# bounds\n3\n1 0.5\n2 -1\n3 0.25 # last\n", "m.area", 3).unwrap();
+        assert_eq!(a, vec![0.5, -1.0, 0.25]);
+        let e = parse_area("3\n1 0.5\n2 x\n3 1\n", "m.area", 3)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("m.area:3") && e.contains("maximum area"), "{e}");
+        let e = parse_area("2\n1 0.5\n2 1\n", "m.area", 3)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("2 area bounds for 3 triangles"), "{e}");
+        let e = parse_area("2\n1 0.5\n", "m.area", 2)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("end of file") && e.contains("triangle 2 of 2"),
+            "{e}"
+        );
+        let e = parse_area("1\n1 0.5\n2 1\n", "m.area", 1)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("m.area:3") && e.contains("unexpected data"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn six_node_triangles_keep_their_corners() {
+        let ele = "1 6 1\n1 1 2 3 4 5 6 7.5\n";
+        let e = parse_ele(ele, "m.ele", 1, 6).unwrap();
+        assert_eq!(e.triangles, vec![[0, 1, 2]]);
+        assert_eq!(e.attributes, vec![7.5]);
+        let err = parse_ele(ele, "m.ele", 1, 5).unwrap_err().to_string();
+        assert!(err.contains("node 6 is out of range"), "{err}");
+        let err = parse_ele("1 4\n1 1 2 3 4\n", "m.ele", 1, 6)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("3 or 6 nodes"), "{err}");
     }
 }

@@ -16,21 +16,14 @@ pub const MAX_MIN_ANGLE: f64 = 34.0;
 use crate::error::MAX_COORD;
 
 pub(super) fn run(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
-    let policy = if opts.no_boundary_steiner {
+    // Which segments may be split (Triangle's -YY, -Y, neither); one policy serves all three.
+    let policy = if opts.no_segment_steiner {
+        SegmentSteiner::Nowhere
+    } else if opts.no_boundary_steiner {
         SegmentSteiner::NotOnBoundary
     } else {
         SegmentSteiner::Anywhere
     };
-    run_with(pslg, opts, policy)
-}
-
-/// [`run`] with an explicit choice of the segments that may be split (`-YY` has no option
-/// of its own yet).
-pub(super) fn run_with(
-    pslg: &Pslg,
-    opts: &Options,
-    policy: SegmentSteiner,
-) -> Result<TriMesh, Error> {
     let n = pslg.points.len();
     stage(Stage::Reading, || (0, n as u64))?;
     check_options(opts)?;

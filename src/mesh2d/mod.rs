@@ -7,7 +7,8 @@
 //! encroached segments until the constrained triangulation is Delaunay (paper Fig. 2, `Force`);
 //! then eliminate skinny and oversized triangles (paper Fig. 4, `Provisional` circumcenter /
 //! off-center insertion). With `no_boundary_steiner` (Triangle's `-Y`) boundary segments are
-//! never split and the result is constrained Delaunay.
+//! never split, with `no_segment_steiner` (`-YY`) no segment is, and the result is constrained
+//! Delaunay.
 //!
 //! The incremental kernel underneath (`store.rs` with `recover.rs` and `flip.rs`: point
 //! location, the Bowyer–Watson cavity, constrained segment recovery and Lawson flips, one
@@ -92,6 +93,14 @@ pub struct Options {
     /// the boundary, may keep angles below `min_angle` and areas above the bounds. A domain all
     /// of whose triangles touch the boundary may get no Steiner point at all. Default: `false`.
     pub no_boundary_steiner: bool,
+    /// Forbid Steiner points on every segment (Triangle's `-YY`), interior segments included:
+    /// every input segment stays a single edge (or the pieces between input points lying on
+    /// it). Implies [`Options::no_boundary_steiner`] and has the same consequences, now next
+    /// to every segment: the mesh is constrained Delaunay (check it with
+    /// [`TriMesh::validate_constrained`]), and a refinement point that would encroach a
+    /// segment is rejected, so triangles next to segments may keep angles below `min_angle`
+    /// and areas above the bounds. Default: `false`.
+    pub no_segment_steiner: bool,
     /// Use off-centers (Üngör) instead of circumcenters for skinny triangles: fewer triangles for
     /// the same angle bound. Default: `true`.
     pub off_centers: bool,
@@ -120,6 +129,7 @@ impl Default for Options {
             convex_hull: false,
             max_steiner: None,
             no_boundary_steiner: false,
+            no_segment_steiner: false,
             off_centers: true,
             split_crossings: false,
             sizing: None,
@@ -139,6 +149,7 @@ impl fmt::Debug for Options {
             .field("convex_hull", &self.convex_hull)
             .field("max_steiner", &self.max_steiner)
             .field("no_boundary_steiner", &self.no_boundary_steiner)
+            .field("no_segment_steiner", &self.no_segment_steiner)
             .field("off_centers", &self.off_centers)
             .field("split_crossings", &self.split_crossings)
             .field("sizing", &self.sizing.as_ref().map(|_| "<fn>"))

@@ -40,9 +40,7 @@ pub(super) enum SegmentSteiner {
     Anywhere,
     /// Segments with the domain on one side only are never split (`-Y`).
     NotOnBoundary,
-    /// No segment is ever split (`-YY`). Only reachable through `build::run_with` until
-    /// `Options` has a switch for it.
-    #[cfg_attr(not(test), allow(dead_code))]
+    /// No segment is ever split (`-YY`).
     Nowhere,
 }
 

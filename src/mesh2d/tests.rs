@@ -423,9 +423,10 @@ fn no_steiner_on_any_segment_keeps_every_segment_whole() {
     let opts = Options {
         min_angle: Some(30.0),
         max_area: Some(0.002),
+        no_segment_steiner: true,
         ..Options::default()
     };
-    let m = super::build::run_with(&p, &opts, super::refine::SegmentSteiner::Nowhere).unwrap();
+    let m = triangulate(&p, &opts).unwrap();
     m.validate_constrained().unwrap();
     assert_eq!(m.segments.len(), p.segments.len());
     for e in &m.segments {
@@ -458,7 +459,11 @@ fn constrained_insertion_of_a_long_segment() {
         convex_hull: true,
         ..Options::default()
     };
-    let m = super::build::run_with(&p, &opts, super::refine::SegmentSteiner::Nowhere).unwrap();
+    let fixed = Options {
+        no_segment_steiner: true,
+        ..opts.clone()
+    };
+    let m = triangulate(&p, &fixed).unwrap();
     m.validate_constrained().unwrap();
     assert_eq!(m.steiner_points, 0);
     assert_eq!(m.triangles.len(), 2 * p.points.len() - 2 - 4);

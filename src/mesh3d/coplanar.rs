@@ -1,8 +1,11 @@
-//! Merging exactly coplanar neighbouring facets into one (what TetGen does unless given `-M`).
+//! Merging exactly coplanar neighbouring facets into one (what TetGen does unless given `-M`),
+//! and, on request only, moving nearly coplanar neighbours onto one plane first (TetGen's
+//! `-T<tol>`).
 //!
 //! A triangulated surface describes each flat face of the object by triangles, and their
 //! shared edges are artefacts of the triangulation, not features: a thin rectangle split along
-//! its diagonal has two 1.5° angles that the rectangle does not have (pipe.off's walls). Kept as
+//! its diagonal has two 1.5° angles that the rectangle does not have (the walls of a
+//! tessellated pipe). Kept as
 //! input edges they must appear in the mesh, and the small angles they make cost protection
 //! zones, skinny tets and many Steiner points. Merged, the face is one polygon facet (the union
 //! of its triangles, its holes and isolated points included) and the shared edges are gone.
@@ -11,10 +14,46 @@
 //! free segment of the input, both are single loops without hole seeds, they have the same
 //! marker, they are exactly coplanar (exact orientation tests), and they lie on opposite sides
 //! of the edge (a fold back onto itself is kept).
+//!
+//! **Tolerance (opt-in, [`snap_nearly_coplanar`]).** Exact conformity to the input is the
+//! default: a fold of 10⁻⁹ between two facets is kept, and the flat tetrahedron it may leave is
+//! for sliver removal to fix. With a tolerance `tol` (TetGen's `-T`), facets that would be
+//! merged but for exact coplanarity are first grouped and snapped onto one plane:
+//!
+//! * Groups grow from a seed facet, the largest by area first (areas rounded to single
+//!   precision; ties: the lower index), across
+//!   the edges the exact merge would join (same conditions but coplanarity). A neighbour `g`
+//!   joins when every vertex of `g` lies within `tol × L(g)` of the reference plane, `L(g)`
+//!   being `g`'s longest edge: a distance relative to the facet's own size, so the rule does
+//!   not change under scaling and translation (up to the rounding of the coordinates
+//!   themselves). The reference plane is the seed's own plane, or, when the seed lies within
+//!   the tolerance of it, the plane parallel to the coordinate plane the seed is closest to,
+//!   through the coordinate most of the seed's vertices share (a scanned box face: its noise
+//!   does not tilt the reference). Comparing every facet with one plane, not with its
+//!   neighbour's, keeps a gently curved surface from being flattened by a chain of small folds.
+//! * The group's plane is the first of these (at most 8) on which every member lies within
+//!   the tolerance and every move below is exact: the coordinate plane (normal to the seed's
+//!   dominant axis) through the value most of the group's vertices share, then the members'
+//!   own planes, the seed's first. Each vertex off it (exact `orient3d`) is moved along the
+//!   coordinate axis closest to the plane's normal onto a point with floating-point
+//!   coordinates lying *exactly* on the plane (the solved coordinate or one of its nearest
+//!   floating-point neighbours, checked exactly). It moves by its distance to the plane (for a
+//!   plane parallel to a coordinate plane, as a box's faces) or at most √3 times it.
+//! * A group is left as it is (counted in [`SnapReport::refused`]) when some vertex has no
+//!   such point (common for slanted planes: an exactly planar snap needs representable points
+//!   on the plane), or when a move would leave another facet that uses the vertex not exactly
+//!   planar. If the moved input is no longer a valid PLC (a move made facets cross), nothing
+//!   is moved at all.
+//!
+//! The exact merge then joins each snapped group. The boundary is then within the tolerance of
+//! the input, as TetGen's is; the mesh's vertices are the moved points.
 
+use crate::error::{catch_panic, Error};
 use crate::hash::FastMap as HashMap;
 use crate::input3d::{Facet, Plc};
 use crate::predicates::{orient2d, orient3d};
+use crate::NONE;
+use glam::DVec3;
 
 use super::features::{dominant_axis, ekey, proj};
 
@@ -143,30 +182,40 @@ fn edge_uses(plc: &Plc) -> HashMap<u64, Vec<(u32, bool)>> {
 
 /// Whether the two facet uses of one edge can be merged (see the module comment).
 fn mergeable(plc: &Plc, info: &[Option<Loop>], u1: (u32, bool), u2: (u32, bool)) -> bool {
-    let ((f1, d1), (f2, d2)) = (u1, u2);
-    if f1 == u32::MAX || f2 == u32::MAX || f1 == f2 {
-        return false;
-    }
-    let (Some(l1), Some(l2)) = (&info[f1 as usize], &info[f2 as usize]) else {
+    let Some((l1, l2)) = joinable(plc, info, u1, u2) else {
         return false;
     };
-    if plc.facets[f1 as usize].marker != plc.facets[f2 as usize].marker {
-        return false;
-    }
     let [a, b, c] = l1.plane.map(|v| plc.points[v as usize]);
-    if l2
-        .verts
+    l2.verts
         .iter()
-        .any(|&v| orient3d(a, b, c, plc.points[v as usize]) != 0.0)
-    {
-        return false;
+        .all(|&v| orient3d(a, b, c, plc.points[v as usize]) == 0.0)
+}
+
+/// The loops of the two facet uses of one edge when they meet every condition of the merge
+/// but coplanarity: two distinct facets (no free segment), single loops, the same marker, on
+/// opposite sides of the edge in the first loop's projection.
+fn joinable<'a>(
+    plc: &Plc,
+    info: &'a [Option<Loop>],
+    u1: (u32, bool),
+    u2: (u32, bool),
+) -> Option<(&'a Loop, &'a Loop)> {
+    let ((f1, d1), (f2, d2)) = (u1, u2);
+    if f1 == u32::MAX || f2 == u32::MAX || f1 == f2 {
+        return None;
+    }
+    let (Some(l1), Some(l2)) = (&info[f1 as usize], &info[f2 as usize]) else {
+        return None;
+    };
+    if plc.facets[f1 as usize].marker != plc.facets[f2 as usize].marker {
+        return None;
     }
     // Which side of the edge each facet lies on: its orientation in one common projection,
     // flipped when it runs along the edge the other way.
     let side =
         |l: &Loop, forward: bool| l.orientation(plc, l1.axis) * if forward { 1.0 } else { -1.0 };
     let (s1, s2) = (side(l1, d1), side(l2, d2));
-    s1 != 0.0 && s2 != 0.0 && s1 != s2
+    (s1 != 0.0 && s2 != 0.0 && s1 != s2).then_some((l1, l2))
 }
 
 /// The facet that is the union of the group's facets: the loops of its boundary, the edges
@@ -271,6 +320,364 @@ impl UnionFind {
             self.parent[ra.max(rb) as usize] = ra.min(rb);
         }
     }
+}
+
+/// What [`snap_nearly_coplanar_facets`] (and the tolerance merge of `tetrahedralize`) did.
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
+pub struct SnapReport {
+    /// Groups of nearly coplanar facets whose vertices were moved onto one plane.
+    pub groups: usize,
+    /// Facets in those groups.
+    pub facets: usize,
+    /// Vertices moved.
+    pub moved: usize,
+    /// Groups left as they were: a vertex with no floating-point point exactly on the plane
+    /// near it, a move that would bend another facet, or (all of them) moves that made the
+    /// input invalid.
+    pub refused: usize,
+}
+
+/// TetGen's `-T<tol>` on its own: `plc` with the vertices of each group of nearly coplanar
+/// facets that [`crate::tetrahedralize`] would merge moved exactly onto one plane (the input
+/// unchanged when nothing moves), and what moved. Use it to see which facets a tolerance
+/// merges; [`crate::mesh3d::Options3::coplanar_tolerance`] applies it when meshing. Errors: an
+/// invalid PLC, or `tol` not in `(0, MAX_COPLANAR_TOLERANCE]`.
+pub fn snap_nearly_coplanar_facets(plc: &Plc, tol: f64) -> Result<(Plc, SnapReport), Error> {
+    crate::input3d::check_plc(plc)?;
+    super::check_options(&super::Options3 {
+        coplanar_tolerance: Some(tol),
+        ..Default::default()
+    })?;
+    let (out, report) = catch_panic("", || Ok(snap_nearly_coplanar(plc, tol)))?;
+    Ok((out.unwrap_or_else(|| plc.clone()), report))
+}
+
+/// The input with the vertices of each group of nearly coplanar mergeable facets moved exactly
+/// onto the plane of the group's largest facet (see the module docs for the rule), or `None`
+/// when nothing moves; `tol` is relative (TetGen's `-T`, default 1e-8) and must be positive.
+pub(crate) fn snap_nearly_coplanar(plc: &Plc, tol: f64) -> (Option<Plc>, SnapReport) {
+    let mut report = SnapReport::default();
+    let nf = plc.facets.len();
+    let info: Vec<Option<Loop>> = plc.facets.iter().map(|f| Loop::of(plc, f)).collect();
+    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); nf];
+    for u in edge_uses(plc).values() {
+        if let [u1, u2] = u.as_slice() {
+            if joinable(plc, &info, *u1, *u2).is_some() {
+                neighbours[u1.0 as usize].push(u2.0);
+                neighbours[u2.0 as usize].push(u1.0);
+            }
+        }
+    }
+    let p = |v: u32| plc.points[v as usize];
+    // Size (area, from the Newell normal) and longest edge of each single-loop facet.
+    let v3 = |v: u32| DVec3::from_array(p(v));
+    let measure = |l: &Loop| {
+        let o = v3(l.verts[0]);
+        let (mut n, mut longest) = (DVec3::ZERO, 0.0f64);
+        for (i, &v) in l.verts.iter().enumerate() {
+            let w = l.verts[(i + 1) % l.verts.len()];
+            n += (v3(v) - o).cross(v3(w) - o);
+            longest = longest.max(v3(w).distance(v3(v)));
+        }
+        (n.length(), longest)
+    };
+    let sizes: Vec<(f64, f64)> = info
+        .iter()
+        .map(|l| l.as_ref().map_or((0.0, 0.0), measure))
+        .collect();
+    let mut order: Vec<u32> = (0..nf as u32)
+        .filter(|&f| info[f as usize].is_some() && !neighbours[f as usize].is_empty())
+        .collect();
+    // Largest first, areas rounded to single precision: facets of one size (a grid's
+    // triangles, whose noise changes their areas only by its square) then keep index order
+    // (stable sort), whatever the rounding of their coordinates.
+    order.sort_by(|&f, &g| (sizes[g as usize].0 as f32).total_cmp(&(sizes[f as usize].0 as f32)));
+    // Groups, grown from the largest facets.
+    let mut group_of = vec![NONE; nf];
+    let mut groups: Vec<Vec<u32>> = Vec::new();
+    for &seed in &order {
+        if group_of[seed as usize] != NONE {
+            continue;
+        }
+        group_of[seed as usize] = seed;
+        // The reference plane: the coordinate plane through the seed (see `axis_plane`)
+        // when the seed is within the tolerance of it, else the seed's own plane, so that
+        // the noise of a scanned flat face does not tilt the reference.
+        let loop_of = |f: u32| info[f as usize].as_ref();
+        let own = loop_of(seed).map_or([[0.0; 3]; 3], |l| l.plane.map(p));
+        let within = |t: [[f64; 3]; 3], g: u32| {
+            loop_of(g)
+                .is_some_and(|l| near_plane(&plc.points, t, &l.verts, tol * sizes[g as usize].1))
+        };
+        let flat = loop_of(seed).map(|l| axis_plane(&plc.points, own, &l.verts));
+        let reference = flat.filter(|&t| within(t, seed)).unwrap_or(own);
+        let near = |g: u32| within(reference, g);
+        let (mut members, mut queue) = (vec![seed], vec![seed]);
+        while let Some(f) = queue.pop() {
+            for &g in &neighbours[f as usize] {
+                if group_of[g as usize] == NONE && near(g) {
+                    group_of[g as usize] = seed;
+                    members.push(g);
+                    queue.push(g);
+                }
+            }
+        }
+        if members.len() > 1 {
+            groups.push(members);
+        }
+    }
+    // The facets using each vertex, for the planarity check after a move.
+    let mut facets_of: HashMap<u32, Vec<u32>> = HashMap::default();
+    for (f, facet) in plc.facets.iter().enumerate() {
+        for &v in facet.polygons.iter().flatten() {
+            let list = facets_of.entry(v).or_default();
+            if list.last() != Some(&(f as u32)) {
+                list.push(f as u32);
+            }
+        }
+    }
+    let mut points = plc.points.clone();
+    for members in &groups {
+        let mut verts: Vec<u32> = members
+            .iter()
+            .filter_map(|&f| info[f as usize].as_ref())
+            .flat_map(|l| l.verts.iter().copied())
+            .collect();
+        verts.sort_unstable();
+        verts.dedup();
+        let group = Group {
+            members,
+            verts: &verts,
+            info: &info,
+            sizes: &sizes,
+            tol,
+        };
+        let planes = group.candidate_planes(&points);
+        let moved = planes
+            .into_iter()
+            .find_map(|t| group.snap(&mut points, t, plc, &facets_of));
+        match moved {
+            // Exactly coplanar already: the exact merge's business, not counted.
+            Some(0) => {}
+            Some(n) => {
+                report.groups += 1;
+                report.facets += members.len();
+                report.moved += n;
+            }
+            None => report.refused += 1,
+        }
+    }
+    if report.moved == 0 {
+        return (None, report);
+    }
+    let out = Plc {
+        points,
+        ..plc.clone()
+    };
+    if crate::input3d::check_plc(&out).is_err() {
+        report.refused += report.groups;
+        (report.groups, report.facets, report.moved) = (0, 0, 0);
+        return (None, report);
+    }
+    (Some(out), report)
+}
+
+/// At most this many planes are tried per group (see [`Group::candidate_planes`]).
+const MAX_PLANES: usize = 8;
+
+/// A group of nearly coplanar facets to be snapped onto one plane.
+struct Group<'a> {
+    members: &'a [u32],
+    /// The members' vertices, sorted, once each.
+    verts: &'a [u32],
+    info: &'a [Option<Loop>],
+    /// Per facet: (area measure, longest edge).
+    sizes: &'a [(f64, f64)],
+    tol: f64,
+}
+
+impl Group<'_> {
+    /// The planes to try, each as three points on it: first the plane parallel to a
+    /// coordinate plane (normal: the seed's dominant axis) through the value of that
+    /// coordinate most of the group's vertices share (a box face's exact value, where a scan
+    /// adds noise to some vertices), then the members' own planes, the seed's first; at most
+    /// [`MAX_PLANES`].
+    fn candidate_planes(&self, points: &[[f64; 3]]) -> Vec<[[f64; 3]; 3]> {
+        let p = |v: u32| points[v as usize];
+        let plane_of = |f: u32| self.info[f as usize].as_ref().map(|l| l.plane.map(p));
+        let mut planes = Vec::new();
+        if let Some(t) = plane_of(self.members[0]) {
+            planes.push(axis_plane(points, t, self.verts));
+        }
+        planes.extend(self.members.iter().filter_map(|&f| plane_of(f)));
+        planes.truncate(MAX_PLANES);
+        planes
+    }
+
+    /// Moves the group's vertices exactly onto the plane through `t` when every member lies
+    /// within the tolerance of it, every vertex off it has a floating-point point exactly on
+    /// it ([`snap_onto`]), and every facet using a moved vertex stays exactly planar; returns
+    /// the number of vertices moved. Otherwise `points` is left as it was and `None` returned.
+    fn snap(
+        &self,
+        points: &mut [[f64; 3]],
+        t: [[f64; 3]; 3],
+        plc: &Plc,
+        facets_of: &HashMap<u32, Vec<u32>>,
+    ) -> Option<usize> {
+        let within = self.members.iter().all(|&g| {
+            self.info[g as usize].as_ref().is_some_and(|l| {
+                near_plane(points, t, &l.verts, self.tol * self.sizes[g as usize].1)
+            })
+        });
+        if !within {
+            return None;
+        }
+        let mut undo: Vec<(u32, [f64; 3])> = Vec::new();
+        let mut ok = true;
+        for &v in self.verts {
+            let q = points[v as usize];
+            if orient3d(t[0], t[1], t[2], q) == 0.0 {
+                continue;
+            }
+            match snap_onto(t, q) {
+                Some(s) => {
+                    undo.push((v, q));
+                    points[v as usize] = s;
+                }
+                None => {
+                    ok = false;
+                    break;
+                }
+            }
+        }
+        ok = ok
+            && undo.iter().all(|&(v, _)| {
+                facets_of.get(&v).map_or(true, |fs| {
+                    fs.iter().all(|&f| planar(points, &plc.facets[f as usize]))
+                })
+            });
+        if ok {
+            return Some(undo.len());
+        }
+        for &(v, q) in undo.iter().rev() {
+            points[v as usize] = q;
+        }
+        None
+    }
+}
+
+/// Whether every vertex of `verts` lies within `distance` of the plane through `t`
+/// (floating point: a tolerance, not a geometric decision).
+fn near_plane(points: &[[f64; 3]], t: [[f64; 3]; 3], verts: &[u32], distance: f64) -> bool {
+    let [a, b, c] = t.map(DVec3::from_array);
+    let n = (b - a).cross(c - a);
+    let bound = distance * n.length();
+    verts
+        .iter()
+        .all(|&v| n.dot(DVec3::from_array(points[v as usize]) - a).abs() <= bound)
+}
+
+/// Three points spanning the plane parallel to a coordinate plane, normal to the dominant
+/// axis of the plane of `t`, through the value of that coordinate most of `verts` share (the
+/// smallest of the most common values); `points` gives the coordinates.
+fn axis_plane(points: &[[f64; 3]], t: [[f64; 3]; 3], verts: &[u32]) -> [[f64; 3]; 3] {
+    let [a, b, c] = t.map(DVec3::from_array);
+    let n = (b - a).cross(c - a).abs().to_array();
+    let k = (0..3).max_by(|&i, &j| n[i].total_cmp(&n[j])).unwrap_or(2);
+    let mut values: Vec<f64> = verts.iter().map(|&v| points[v as usize][k]).collect();
+    values.sort_by(f64::total_cmp);
+    let mut best = (0, 0.0);
+    for run in values.chunk_by(|x, y| x == y) {
+        if run.len() > best.0 {
+            best = (run.len(), run[0]);
+        }
+    }
+    let mut plane = [[0.0; 3]; 3];
+    for (m, corner) in plane.iter_mut().enumerate() {
+        corner[k] = best.1;
+        if m > 0 {
+            corner[(k + m) % 3] = 1.0;
+        }
+    }
+    plane
+}
+
+/// A point with floating-point coordinates exactly on the plane of `t` near `q`: `q` moved
+/// along the axis closest to the plane's normal (its solved coordinate, then up to 8 of that
+/// coordinate's floating-point neighbours on each side, each checked exactly). `None` when
+/// none of them is on the plane.
+fn snap_onto(t: [[f64; 3]; 3], q: [f64; 3]) -> Option<[f64; 3]> {
+    let [a, b, c] = t;
+    let n = (DVec3::from_array(b) - DVec3::from_array(a))
+        .cross(DVec3::from_array(c) - DVec3::from_array(a))
+        .to_array();
+    let k = (0..3).max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))?;
+    if n[k] == 0.0 {
+        return None;
+    }
+    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+    let mut s = q;
+    s[k] = a[k] - (n[i] * (q[i] - a[i]) + n[j] * (q[j] - a[j])) / n[k];
+    if !s[k].is_finite() {
+        return None;
+    }
+    let solved = s[k];
+    let (mut up, mut down) = (solved, solved);
+    for step in 0..17 {
+        s[k] = match step {
+            0 => solved,
+            _ if step % 2 == 1 => {
+                up = next_float(up, true);
+                up
+            }
+            _ => {
+                down = next_float(down, false);
+                down
+            }
+        };
+        if orient3d(a, b, c, s) == 0.0 {
+            return Some(s);
+        }
+    }
+    None
+}
+
+/// The next floating-point number above (`up`) or below `x`, a finite number (`f64::next_up`
+/// and `next_down` are newer than the crate's minimum Rust version).
+fn next_float(x: f64, up: bool) -> f64 {
+    if x == 0.0 {
+        let tiny = f64::from_bits(1);
+        return if up { tiny } else { -tiny };
+    }
+    let bits = x.to_bits();
+    f64::from_bits(if (x > 0.0) == up { bits + 1 } else { bits - 1 })
+}
+
+/// Whether every vertex and hole seed of `facet` lies exactly on one plane (`points` as moved).
+fn planar(points: &[[f64; 3]], facet: &Facet) -> bool {
+    let verts: Vec<[f64; 3]> = facet
+        .polygons
+        .iter()
+        .flatten()
+        .map(|&v| points[v as usize])
+        .collect();
+    let Some(&a) = verts.first() else {
+        return true;
+    };
+    let plane = verts.iter().enumerate().skip(1).find_map(|(j, &b)| {
+        verts[j + 1..]
+            .iter()
+            .find(|&&c| dominant_axis(a, b, c).is_some())
+            .map(|&c| [a, b, c])
+    });
+    let Some([a, b, c]) = plane else {
+        return false;
+    };
+    verts
+        .iter()
+        .chain(facet.holes.iter())
+        .all(|&d| orient3d(a, b, c, d) == 0.0)
 }
 
 #[cfg(test)]

@@ -27,7 +27,7 @@ use crate::predicates::orient2d;
 ///
 /// The corners are symbolic points at infinity, `λ·BDIR[k]` in projected coordinates as
 /// `λ → ∞`: every predicate involving them is its exact limit. A finite bounding triangle is
-/// not enough: the circumcircle of a needle triangle (0.07° angles in `u.off`) is hundreds of
+/// not enough: the circumcircle of a needle triangle (0.07° angles in a triangulated CAD part) is hundreds of
 /// times larger than its facet and would hold a finite corner, so the facet's own edges would
 /// not be Delaunay in the facet mesh while they are in the 3D mesh.
 const BOUND: u32 = u32::MAX - 4;
@@ -1166,7 +1166,7 @@ mod tests {
 
     #[test]
     fn sliver_of_a_reflex_boundary_vertex_is_outside() {
-        // fandisk.off's boundary vertices 6267, 6268, 6269 (projected on x = -0.207) are nearly
+        // Three boundary vertices of a CAD fan-disk model (projected on x = -0.207) are nearly
         // collinear and 6268 is reflex: the sliver between them lies outside the facet, but
         // its rounded centroid falls inside for some vertex orders (then it was taken for a
         // subface that no split could put into the 3D mesh: "too small to split").

@@ -20,13 +20,14 @@ mod output;
 mod plc;
 #[cfg(test)]
 pub(crate) mod plc_tests;
-pub mod store;
-pub mod surface;
+pub(crate) mod store;
+pub(crate) mod surface;
 mod validate;
 
 use std::fmt;
 use std::sync::Arc;
 
+pub use coplanar::{snap_nearly_coplanar_facets, SnapReport};
 pub use optimize::{DEFAULT_MAX_DIHEDRAL, DEFAULT_SCHEME, MAX_LEVEL};
 pub use output::{TetMesh, TetStats, DIHEDRAL_BINS};
 pub use plc::sliver::DEFAULT_MIN_DIHEDRAL;
@@ -117,6 +118,17 @@ pub struct Options3 {
     /// Bounds must be positive; pairs naming no input edge are ignored, as in TetGen. Not
     /// applied with `keep_surface`. Default: empty.
     pub segment_max_length: Vec<([u32; 2], f64)>,
+    /// A relative tolerance for merging *nearly* coplanar neighbouring facets (TetGen's
+    /// `-T<tol>`; TetGen's default is 1e-8), used only with `merge_coplanar` (and not with
+    /// `keep_surface`). Facets that would be merged but for exact coplanarity are grouped when
+    /// every vertex of each lies within `tol` times that facet's longest edge of the plane of
+    /// the group's largest facet, and their vertices are moved exactly onto that plane first,
+    /// so the boundary is then within the tolerance of the input, as TetGen's is, and the
+    /// mesh's vertices are the moved points (see the `coplanar` module's docs, and
+    /// [`snap_nearly_coplanar_facets`] for what moves). `None`: exact coplanarity only, the
+    /// default: a flat tetrahedron between nearly coplanar facets is then for sliver removal
+    /// to fix. Must be positive and at most [`MAX_COPLANAR_TOLERANCE`]. Default: `None`.
+    pub coplanar_tolerance: Option<f64>,
     /// Mesh optimisation (TetGen's `-O<level>`): after meshing, `optimize_level` passes (0 to
     /// [`MAX_LEVEL`]) of flips and smoothing of interior Steiner vertices that improve the
     /// extreme dihedral angles and never make them worse; the mesh is then no longer Delaunay
@@ -132,6 +144,10 @@ pub struct Options3 {
     /// above 0 and below 180. `None`: [`DEFAULT_MAX_DIHEDRAL`] (165). Default: `None`.
     pub optimize_max_dihedral: Option<f64>,
 }
+
+/// The largest [`Options3::coplanar_tolerance`] accepted: a fold of one hundredth of a
+/// facet's size is a feature of the object, not noise.
+pub const MAX_COPLANAR_TOLERANCE: f64 = 0.01;
 
 impl fmt::Debug for Options3 {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -151,6 +167,7 @@ impl fmt::Debug for Options3 {
             .field("convex_hull", &self.convex_hull)
             .field("facet_max_area", &self.facet_max_area)
             .field("segment_max_length", &self.segment_max_length)
+            .field("coplanar_tolerance", &self.coplanar_tolerance)
             .field("optimize_level", &self.optimize_level)
             .field("optimize_scheme", &self.optimize_scheme)
             .field("optimize_max_dihedral", &self.optimize_max_dihedral)
@@ -194,7 +211,23 @@ pub fn tetrahedralize(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
                 None
             };
             let plc = hulled.as_ref().unwrap_or(plc);
-            let merged = (opts.merge_coplanar && !opts.keep_surface)
+            let merge = opts.merge_coplanar && !opts.keep_surface;
+            let snapped = match opts.coplanar_tolerance {
+                Some(tol) if merge => {
+                    let (snapped, r) = coplanar::snap_nearly_coplanar(plc, tol);
+                    if opts.verbose {
+                        eprintln!(
+                            "idmesh: -T{tol:e}: {} groups of {} nearly coplanar facets snapped \
+                             onto their planes ({} vertices moved), {} groups kept as they are",
+                            r.groups, r.facets, r.moved, r.refused
+                        );
+                    }
+                    snapped
+                }
+                _ => None,
+            };
+            let plc = snapped.as_ref().unwrap_or(plc);
+            let merged = merge
                 .then(|| coplanar::merge_coplanar_facets(plc))
                 .flatten();
             let mut mesh = plc::mesh_plc(merged.as_ref().unwrap_or(plc), opts)?;
@@ -285,6 +318,14 @@ fn check_options(opts: &Options3) -> Result<(), Error> {
             return Err(Error::InvalidOption(format!(
                 "optimisation maximum dihedral angle {a} must be a number above 0 and below \
                  180 degrees"
+            )));
+        }
+    }
+    if let Some(t) = opts.coplanar_tolerance {
+        if !(t.is_finite() && t > 0.0 && t <= MAX_COPLANAR_TOLERANCE) {
+            return Err(Error::InvalidOption(format!(
+                "coplanar tolerance (-T) {t} must be a number greater than 0 and at most \
+                 {MAX_COPLANAR_TOLERANCE}"
             )));
         }
     }

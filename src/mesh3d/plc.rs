@@ -14,6 +14,7 @@
 
 use std::collections::VecDeque;
 
+mod box_index;
 mod constraints;
 mod flip;
 mod frame;
@@ -56,7 +57,7 @@ enum Why {
     /// was refused for encroaching it, while that tet is in the mesh. One split usually removes
     /// the tet; its other demands are then dropped, and the tets that replaced it are judged
     /// afresh (each encroached simplex split anyway would refine the surface for a tet that is
-    /// gone: pipe.off -pq1.2 made 705k tets that way, 431k without).
+    /// gone: a tessellated pipe at -pq1.2 made 705k tets that way, 431k without).
     ForTet(u32, [u32; 4]),
 }
 
@@ -1513,8 +1514,8 @@ fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
 /// radius-edge ratio large: only a short edge pinned by the small angle excuses the tet (one
 /// ending in the apex's protection ball, one across the wedge between concentric shells, or
 /// one next to a thin wedge). A tet that merely touches a sharp vertex is not excused:
-/// exempting every such tet, however large, left whole inputs unrefined (u.off's triangulated
-/// surface has a sharp vertex almost everywhere).
+/// exempting every such tet, however large, left whole inputs unrefined (a finely triangulated
+/// CAD surface has a sharp vertex almost everywhere).
 #[derive(Default)]
 pub(super) struct Sharp {
     /// Input vertices where two input edges meet below 60° (two edges of one facet: below
@@ -1541,17 +1542,21 @@ pub(super) struct Sharp {
     /// split the edges and tets with a shortest edge ending there are not refined (corner
     /// lopping, as in Pav and Walkington's Delaunay refinement for small angles): below the
     /// theoretical bound (a radius-edge ratio of 2) refinement next to a sharp vertex can
-    /// otherwise run towards it (u.off at -pq1.2: 4,000 tets within 0.02 of one 9-degree corner).
+    /// otherwise run towards it (a triangulated U-shaped part at -pq1.2: 4,000 tets within 0.02 of one 9-degree corner).
     balls: Vec<([f64; 3], f64)>,
+    /// `balls` and `wedges` indexed by their boxes (nearly every vertex of a scanned surface
+    /// is sharp: scanning them all for every tet made refinement quadratic).
+    ball_index: box_index::BoxIndex,
+    wedge_index: box_index::BoxIndex,
 }
 
 /// A thin wedge: two input edges from `apex` to `ends` meeting at an angle whose sine is below
 /// [`THIN_WEDGE`], with its protection zone, the points within `sqrt(r2)` of both edges
-/// (bounding box `lo`, `hi`). The two edges run side by side along their whole length (u.off's
-/// 0.07° needle triangles: two edges 0.04 long never more than 5e-5 apart), so shells near
+/// (bounding box `lo`, `hi`). The two edges run side by side along their whole length (0.07°
+/// needle triangles of a triangulated U-shaped part: two edges 0.04 long never more than 5e-5 apart), so shells near
 /// the apex do not help: everywhere along them, tets join points on both and are as short as
 /// the gap, and refinement would resolve the gap (at about 1/angle tets per doubling of the
-/// distance from the apex, 50,000 tets for u.off) where TetGen just leaves such tets alone. A
+/// distance from the apex, 50,000 tets for that part) where TetGen just leaves such tets alone. A
 /// tet whose shortest edge has an endpoint in the zone is exempt.
 #[derive(Clone, Copy)]
 struct Wedge {
@@ -1564,13 +1569,14 @@ struct Wedge {
 
 /// Sine of the largest angle of a thin wedge: its widest gap (at the end of the shorter edge)
 /// is below a quarter of its zone radius ([`ZONE_FRACTION`] of that edge's length), so at the
-/// zone's scale the two edges are one feature. (About 3.6°: u.off's 0.07° wedges are thin,
-/// its 5.7° surface triangles are not.)
+/// zone's scale the two edges are one feature. (About 3.6°: 0.07° needle wedges are thin,
+/// 5.7° surface triangles are not.)
 const THIN_WEDGE: f64 = ZONE_FRACTION / 4.0;
 
 /// Radius of a sharp vertex's protection ball, relative to the shorter edge of the pair: half
-/// the zone fraction of edges. (A quarter left a tenth of u.off's tets above -pq1.2's bound, an
-/// eighth 4.4 % as TetGen does; a sixteenth let u.off's corners take 1.4x TetGen's tets.)
+/// the zone fraction of edges. (On a triangulated U-shaped part at -pq1.2, a quarter left a tenth of
+/// the tets above the bound, an eighth 4.4 % as TetGen does; a sixteenth let its corners take
+/// 1.4x TetGen's tets.)
 const BALL_FRACTION: f64 = ZONE_FRACTION / 2.0;
 
 /// Relative tolerance of "equal distances from the apex" for points on the two edges of a
@@ -1605,7 +1611,7 @@ impl Wedge {
 /// refused for encroaching the subface iff `√2 ρf > ρ |P1 P2|`, i.e. `sin θ < 1 / (√2 ρ)`.
 /// The subface is then split at `O`, which encroaches both wedge subsegments (the angle
 /// `A O P1` is `180° − θ`); they are split at `r / 2`, and the same tet comes back at half the
-/// size, forever (fandisk.off with `-q1.2`: a 30.1° wedge, a tet of ratio 1.38 at every scale,
+/// size, forever (a CAD fan-disk model with `-q1.2`: a 30.1° wedge, a tet of ratio 1.38 at every scale,
 /// down to subfaces 1e-9 across). At `ρ = √2` this angle is 30°; for `ρ = 1.2`, 36.1°.
 /// Looser bounds (and no bound) keep 30°: a spike's tip is sharp whatever the bound.
 pub(super) fn wedge_sharp_angle(radius_edge: Option<f64>) -> f64 {
@@ -1680,6 +1686,25 @@ impl Sharp {
             .into_iter()
             .map(|(v, r2)| (p(v).to_array(), r2))
             .collect();
+        sharp.ball_index = box_index::BoxIndex::new(
+            &sharp
+                .balls
+                .iter()
+                .map(|&(c, r2)| {
+                    // Widened far beyond the rounding of the square root, so a point the
+                    // distance test puts inside is in the box.
+                    let r = r2.sqrt() * (1.0 + 1e-6);
+                    (c.map(|x| x - r), c.map(|x| x + r))
+                })
+                .collect::<Vec<_>>(),
+        );
+        sharp.wedge_index = box_index::BoxIndex::new(
+            &sharp
+                .wedges
+                .iter()
+                .map(|w| (w.lo, w.hi))
+                .collect::<Vec<_>>(),
+        );
         let inward = |f: u32, a: u32, b: u32| -> Vec<DVec3> {
             let fi = &feat.facets[f as usize];
             let [u, v, w] = fi.plane.map(p);
@@ -1757,15 +1782,17 @@ impl Sharp {
 
     /// Whether `q` lies in the protection ball of a sharp vertex.
     fn in_ball(&self, q: [f64; 3]) -> bool {
-        self.balls
-            .iter()
-            .any(|&(c, r2)| crate::geometry::dist2_3(q, c) < r2)
+        self.ball_index.candidates(q).any(|i| {
+            let (c, r2) = self.balls[i as usize];
+            crate::geometry::dist2_3(q, c) < r2
+        })
     }
 
     /// Whether `q` lies in the protection zone of a thin wedge.
     fn in_wedge(&self, q: [f64; 3]) -> bool {
         use crate::geometry::dist2_point_segment3 as d2;
-        self.wedges.iter().any(|w| {
+        self.wedge_index.candidates(q).any(|i| {
+            let w = &self.wedges[i as usize];
             (0..3).all(|k| w.lo[k] <= q[k] && q[k] <= w.hi[k])
                 && d2(q, w.apex, w.ends[0]) < w.r2
                 && d2(q, w.apex, w.ends[1]) < w.r2

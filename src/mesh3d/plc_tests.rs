@@ -200,9 +200,9 @@ fn slanted_flat_box_conforms() {
     check_mesh(&plc, &mesh);
 }
 
-/// The seven-sided spike of `spike-1-7.smesh` (a 1° tip): the apex angles are tiny, so the
+/// A seven-sided spike with a 1° tip (as in TetGen's test collection): the apex angles are tiny, so the
 /// circumcentres of skinny subfaces near the tip fall outside their (needle) facets.
-/// Coordinates as in the file (they round to the same doubles).
+/// Its coordinates are written out below.
 #[allow(clippy::excessive_precision)]
 fn spike_plc() -> Plc {
     let mut plc = Plc {
@@ -271,7 +271,7 @@ fn spike_facet_points_stay_inside_their_facets() {
 
 /// A unit cube whose top face is split into a needle triangle (0.057° at the corner
 /// (0, 0, 1)) and the rest: the input edges (0,0,1)-(1,0,1) and (0,0,1)-(1,0.001,1) run side
-/// by side, never more than 0.001 apart (the thin wedges of u.off). The facets are not merged.
+/// by side, never more than 0.001 apart (the thin wedges of a triangulated U-shaped part). The facets are not merged.
 fn thin_wedge_cube() -> Plc {
     let mut plc = Plc {
         points: vec![

@@ -260,6 +260,7 @@ impl Tets {
     }
 
     /// Number of live tets, ghosts included.
+    #[cfg(test)]
     #[inline]
     pub fn num_live(&self) -> usize {
         self.live
@@ -716,6 +717,7 @@ impl Tets {
     /// commit. Returns one of the new tets, or `Err(w)` when `v`'s point equals vertex `w`'s
     /// (nothing changes then). Panics if the structure is corrupted so that no conflicting tet
     /// exists; use [`Tets::try_insert`] to get that as a value.
+    #[cfg(test)]
     pub fn insert(&mut self, v: VertexId, hint: TetId) -> Result<TetId, VertexId> {
         match self.try_insert(v, hint) {
             Insertion::Inserted(t) => Ok(t),

@@ -5,7 +5,9 @@
 //! empty-circumsphere check (a uniform grid around each circumsphere, widened by a bound on the
 //! circumcenter's rounding error); a vertex is reported only when exact insphere says so.
 
-use super::store::{Tets, FACE, GHOST};
+#[cfg(test)]
+use super::store::GHOST;
+use super::store::{Tets, FACE};
 use super::{TetMesh, NONE};
 use crate::error::Error;
 use crate::geometry::{dist2_3, tet_circumcenter};
@@ -597,6 +599,7 @@ impl Tets {
     /// has one [`GHOST`] vertex and its hull triangle faces a real tet; the hull is locally
     /// convex; the vertex-to-tet map points at live incident tets. Exact. The message names the
     /// first offending tet or vertex.
+    #[cfg(test)]
     pub fn check_structure(&self) -> Result<(), String> {
         let p = |v: u32| self.point(v);
         for t in 0..self.num_slots() as u32 {
@@ -691,6 +694,7 @@ impl Tets {
     /// face is not strictly inside the circumsphere of the tet, and no vertex is beyond a hull
     /// triangle's circumcircle test (the ghost conflict rule). With a valid structure this
     /// means the whole tetrahedralization is Delaunay. Exact.
+    #[cfg(test)]
     pub fn check_locally_delaunay(&self) -> Result<(), String> {
         for t in 0..self.num_slots() as u32 {
             if !self.alive(t) {

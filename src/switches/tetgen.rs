@@ -5,7 +5,7 @@
 //! Switches are letters concatenated in one or more arguments starting with `-`
 //! (`-pq1.414a0.1V` or `-p -q1.414 -a0.1 -V`), in any order relative to the file name. Numbers
 //! are read exactly as TetGen reads them: after `q` (and its `/` part) the longest run of
-//! digits and dots; after `a` and `S` the longest run of digits, dots, `e`, `-` and `+`, so
+//! digits and dots; after `a`, `S` and `T` the longest run of digits, dots, `e`, `-` and `+`, so
 //! `-a1e-5` is 1e-5 but `-a0.1e` swallows the `e`. The run is converted like `strtod` (`strtol`
 //! for `S`): its longest prefix that is a number. Every letter TetGen accepts but idmesh does
 //! not implement is an error naming it, never silently ignored.
@@ -44,6 +44,10 @@ pub struct TetSwitches {
     pub keep_surface: bool,
     /// `M`: do not merge exactly coplanar neighbouring facets.
     pub no_merge: bool,
+    /// `T[tol]`: merge nearly coplanar neighbouring facets too, with this relative tolerance
+    /// (`T` alone: TetGen's default 1e-8); `None` (no `T`): exact coplanarity only. No effect
+    /// with `M` or `Y`.
+    pub coplanar_tolerance: Option<f64>,
     /// `z`: number output items from 0.
     pub zero_based: bool,
     /// `f`: write every face, not only the boundary ones, to the `.face` file.
@@ -114,7 +118,6 @@ pub enum Parsed {
 /// TetGen switches that idmesh recognises but does not implement, with what they do.
 fn unsupported(c: char) -> Option<&'static str> {
     Some(match c {
-        'T' => "a coplanarity tolerance (idmesh decides coplanarity exactly)",
         'w' => "weighted Delaunay triangulations",
         'R' => "reversing tetrahedron orientation",
         's' => "piecewise smooth complexes",
@@ -214,6 +217,17 @@ pub fn parse_group(arg: &str, sw: &mut TetSwitches) -> Result<(), String> {
                     };
                     sw.max_steiner = Some(n);
                 }
+            }
+            'T' => {
+                let tol = run_after(&chars, &mut j, exp_number).map_or(1e-8, |r| strtod(&r));
+                if !(tol > 0.0 && tol <= crate::mesh3d::MAX_COPLANAR_TOLERANCE) {
+                    return Err(format!(
+                        "-T: the coplanarity tolerance must be greater than 0 and at most {} \
+                         (in '{arg}')",
+                        crate::mesh3d::MAX_COPLANAR_TOLERANCE
+                    ));
+                }
+                sw.coplanar_tolerance = Some(tol);
             }
             'A' => sw.region_attributes = true,
             'Y' => sw.keep_surface = true,
@@ -321,7 +335,7 @@ pub fn parse_group(arg: &str, sw: &mut TetSwitches) -> Result<(), String> {
             }
             c if c.is_ascii_digit() || "+-./,".contains(c) => {
                 return Err(format!(
-                    "unexpected '{c}' in '{arg}': only p, q, a, S, O and o take numbers, right \
+                    "unexpected '{c}' in '{arg}': only p, q, a, S, T, O and o take numbers, right \
                      after the letter"
                 ))
             }
@@ -495,6 +509,7 @@ impl TetSwitches {
             max_steiner: self.max_steiner,
             keep_surface: self.keep_surface,
             merge_coplanar: !self.no_merge,
+            coplanar_tolerance: self.coplanar_tolerance,
             verbose: self.verbose && !self.quiet,
             convex_hull: self.convex_hull,
             optimize_level: self.optimize_level.unwrap_or(0),

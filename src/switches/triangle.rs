@@ -8,8 +8,25 @@
 //! digits only. Every letter Triangle knows is recorded in [`Switches::given`]; each consumer
 //! then refuses, by name, the ones it does not honour ([`Switches::refuse_except`]), so no
 //! switch is ever silently ignored. Letters Triangle does not know are errors here.
+//!
+//! `r` (refine a given mesh) is honoured differently from Triangle, by [`refine_input`]: the
+//! given triangles are not refined in place but remeshed. Their boundary edges, the edges
+//! between triangles of different attribute or area bound, and the given segments (with `p`)
+//! become the segments of a PSLG; every given point is kept at its index; each connected
+//! group of triangles with one attribute and one area bound becomes a region (its attribute,
+//! and its area bound applied with `a` without a number, as Triangle's `.area` file and
+//! `trianglearealist` are), seeded strictly inside one of its triangles (exact orientation
+//! tests); every area the given triangles enclose but do not cover gets a hole seed. That PSLG
+//! is meshed to the `q`/`a` bounds like any other, so the output has the input's boundary,
+//! regions and points, but not its triangles. As in Triangle, the holes and regions of a
+//! `.poly` file (or `in->holelist`, `in->regionlist`) play no part with `r`, nor does `c`.
 
-use crate::mesh2d::{Options, TriMesh, NONE};
+use std::collections::HashMap;
+
+use crate::error::Error;
+use crate::input2d::{Pslg, Region};
+use crate::mesh2d::{triangulate, Options, TriMesh, NONE};
+use crate::predicates::orient2d;
 
 /// The parsed switches. Field comments give the letter.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -150,6 +167,8 @@ impl Switches {
     /// The mesher options these switches ask for. `poly` says whether the input is a PSLG:
     /// regional area bounds and attributes need one, as in Triangle.
     pub fn options(&self, poly: bool) -> Options {
+        // A mesh to refine has regions (its triangles' attributes and area bounds).
+        let poly = poly || self.refine;
         Options {
             min_angle: self.min_angle,
             max_area: self.max_area,
@@ -158,6 +177,7 @@ impl Switches {
             convex_hull: self.convex_hull,
             max_steiner: self.max_steiner,
             no_boundary_steiner: self.no_boundary_steiner,
+            no_segment_steiner: self.no_segment_steiner,
             verbose: self.verbose && !self.quiet,
             ..Options::default()
         }
@@ -168,6 +188,290 @@ impl Switches {
             self.given.push(name);
         }
     }
+}
+
+/// A mesh given for refinement (`r`), numbered 0-based into the input's points.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct GivenMesh {
+    /// The triangles (their three corners).
+    pub triangles: Vec<[u32; 3]>,
+    /// One attribute per triangle, or empty (Triangle's first triangle attribute).
+    pub attributes: Vec<f64>,
+    /// One maximum area per triangle (0 or less: none), or empty (`.area`,
+    /// `trianglearealist`).
+    pub max_areas: Vec<f64>,
+}
+
+/// A point strictly inside triangle `[a, b, c]` (its rounded centroid, checked exactly), or
+/// `None` when rounding put the centroid on or outside an edge (a very thin triangle).
+fn inside_point(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Option<[f64; 2]> {
+    let p = [(a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0];
+    let side = orient2d(a, b, c);
+    let inside = [(a, b), (b, c), (c, a)]
+        .iter()
+        .all(|&(u, v)| orient2d(u, v, p) * side > 0.0);
+    inside.then_some(p)
+}
+
+/// Labels the connected components of `0..n` under `linked(t, k)` (is item `t` joined to
+/// its `k`-th neighbour `next(t, k)`), in order of their first item.
+fn components(
+    n: usize,
+    next: impl Fn(usize, usize) -> u32,
+    linked: impl Fn(usize, usize) -> bool,
+) -> Vec<Vec<usize>> {
+    let mut seen = vec![false; n];
+    let mut out = Vec::new();
+    let mut stack = Vec::new();
+    for s in 0..n {
+        if seen[s] {
+            continue;
+        }
+        seen[s] = true;
+        stack.push(s);
+        let mut comp = Vec::new();
+        while let Some(t) = stack.pop() {
+            comp.push(t);
+            for k in 0..3 {
+                let u = next(t, k);
+                if u != NONE && linked(t, k) && !seen[u as usize] {
+                    seen[u as usize] = true;
+                    stack.push(u as usize);
+                }
+            }
+        }
+        out.push(comp);
+    }
+    out
+}
+
+/// A point strictly inside one of the triangles `comp` of `tris` over `pts`.
+fn seed_of(pts: &[[f64; 2]], tris: &[[u32; 3]], comp: &[usize]) -> Option<[f64; 2]> {
+    comp.iter().find_map(|&t| {
+        let [a, b, c] = tris[t].map(|v| pts[v as usize]);
+        inside_point(a, b, c)
+    })
+}
+
+/// The PSLG that remeshes `given` (Triangle's `r`; see the module docs): `input`'s points and
+/// markers, its segments (with `p`; markers default to 1) followed by the given mesh's
+/// boundary edges (marker 1) and the edges between its groups (marker 0), a region per
+/// connected group of triangles (when they have attributes, or area bounds and `use_areas`),
+/// and hole seeds where the given triangles leave an enclosed area uncovered. Messages number
+/// items from `base`, as the caller's input does. Mesh the result with the switches' options,
+/// plus `region_attributes` when the given triangles have attributes.
+pub fn refine_input(
+    input: &Pslg,
+    given: &GivenMesh,
+    use_areas: bool,
+    base: u32,
+) -> Result<Pslg, Error> {
+    let bad = |m: String| Error::InvalidOption(format!("-r: {m}"));
+    let pts = &input.points;
+    let (n, nt) = (pts.len(), given.triangles.len());
+    if nt == 0 {
+        return Err(bad(
+            "no triangles given to refine (.ele file or trianglelist)".into(),
+        ));
+    }
+    if nt >= NONE as usize {
+        return Err(bad(format!(
+            "{nt} triangles is more than this build supports"
+        )));
+    }
+    let b = base as u64;
+    for (t, tri) in given.triangles.iter().enumerate() {
+        if let Some(&v) = tri.iter().find(|&&v| v as usize >= n) {
+            return Err(bad(format!(
+                "triangle {} has corner {}, but the points are numbered {b} to {}",
+                t as u64 + b,
+                v as u64 + b,
+                n as i64 - 1 + b as i64
+            )));
+        }
+        let [p, q, r] = tri.map(|v| pts[v as usize]);
+        if orient2d(p, q, r) == 0.0 {
+            return Err(bad(format!(
+                "triangle {} is degenerate: its corners lie on one line",
+                t as u64 + b
+            )));
+        }
+    }
+    for (what, len) in [
+        ("attributes", given.attributes.len()),
+        ("area bounds", given.max_areas.len()),
+    ] {
+        if len != 0 && len != nt {
+            return Err(bad(format!("{len} triangle {what} for {nt} triangles")));
+        }
+    }
+    if let Some(t) = given.attributes.iter().position(|a| !a.is_finite()) {
+        return Err(bad(format!(
+            "triangle {} has a non-finite attribute",
+            t as u64 + b
+        )));
+    }
+    if let Some(t) = given.max_areas.iter().position(|a| a.is_nan()) {
+        return Err(bad(format!(
+            "triangle {} has a NaN area bound",
+            t as u64 + b
+        )));
+    }
+    let attr = |t: usize| given.attributes.get(t).copied().unwrap_or(0.0);
+    let area = |t: usize| match given.max_areas.get(t) {
+        Some(&a) if use_areas && a > 0.0 => Some(a),
+        _ => None,
+    };
+    let group = |t: usize| ((attr(t) + 0.0).to_bits(), area(t).map(f64::to_bits));
+    let key = |a: u32, b: u32| (a.min(b), a.max(b));
+    let edge = |t: usize, i: usize| {
+        let tri = given.triangles[t];
+        (tri[(i + 1) % 3], tri[(i + 2) % 3])
+    };
+
+    // Edge-to-edge adjacency: nb[t][i] is the triangle across the edge opposite corner i.
+    let mut nb = vec![[NONE; 3]; nt];
+    let mut first: HashMap<(u32, u32), (u32, usize, bool)> = HashMap::with_capacity(2 * nt);
+    for t in 0..nt {
+        for i in 0..3 {
+            let (a, c) = edge(t, i);
+            match first.get_mut(&key(a, c)) {
+                Some((_, _, true)) => {
+                    return Err(bad(format!(
+                        "the edge {} {} is shared by more than two triangles",
+                        a as u64 + b,
+                        c as u64 + b
+                    )))
+                }
+                Some((u, j, paired)) => {
+                    *paired = true;
+                    nb[*u as usize][*j] = t as u32;
+                    nb[t][i] = *u;
+                }
+                None => {
+                    first.insert(key(a, c), (t as u32, i, false));
+                }
+            }
+        }
+    }
+    drop(first);
+
+    // Segments: the given ones, then the walls the given mesh adds.
+    let mut segments = input.segments.clone();
+    let mut segment_markers = if input.segment_markers.is_empty() {
+        vec![1; segments.len()]
+    } else {
+        input.segment_markers.clone()
+    };
+    let known: std::collections::HashSet<(u32, u32)> =
+        input.segments.iter().map(|s| key(s[0], s[1])).collect();
+    let wall = |t: usize, i: usize| {
+        let u = nb[t][i];
+        let (a, c) = edge(t, i);
+        u == NONE || group(u as usize) != group(t) || known.contains(&key(a, c))
+    };
+    for (t, across) in nb.iter().enumerate() {
+        for (i, &u) in across.iter().enumerate() {
+            let (a, c) = edge(t, i);
+            // Each edge once: from the triangle with the smaller index (or the only one).
+            if wall(t, i) && (u == NONE || u as usize > t) && !known.contains(&key(a, c)) {
+                segments.push([a, c]);
+                segment_markers.push(i32::from(u == NONE));
+            }
+        }
+    }
+
+    let tris = &given.triangles;
+    let no_seed = |t: usize| {
+        bad(format!(
+            "no point strictly inside triangle {} or its neighbours could be found in floating \
+             point",
+            t as u64 + b
+        ))
+    };
+    let mut regions = Vec::new();
+    if !given.attributes.is_empty() || given.max_areas.iter().any(|&a| use_areas && a > 0.0) {
+        for comp in components(nt, |t, k| nb[t][k], |t, k| !wall(t, k)) {
+            let t = comp[0];
+            regions.push(Region {
+                point: seed_of(pts, tris, &comp).ok_or_else(|| no_seed(t))?,
+                attribute: attr(t),
+                max_area: area(t),
+            });
+        }
+    }
+
+    // Holes: the constrained Delaunay triangulation of the points and the boundary edges
+    // (no Steiner point), its triangles covered by the given mesh found by flooding from one
+    // seed per connected piece of the given mesh; every uncovered piece that does not reach
+    // the convex hull is enclosed, and gets a hole seed.
+    let mut cover = Pslg {
+        points: pts.clone(),
+        ..Pslg::default()
+    };
+    for (t, across) in nb.iter().enumerate() {
+        for (i, &u) in across.iter().enumerate() {
+            if u == NONE {
+                let (a, c) = edge(t, i);
+                cover.segments.push([a, c]);
+            }
+        }
+    }
+    for comp in components(nt, |t, k| nb[t][k], |_, _| true) {
+        cover.regions.push(Region {
+            point: seed_of(pts, tris, &comp).ok_or_else(|| no_seed(comp[0]))?,
+            attribute: 1.0,
+            max_area: None,
+        });
+    }
+    let opts = Options {
+        convex_hull: true,
+        no_segment_steiner: true,
+        region_attributes: true,
+        ..Options::default()
+    };
+    let cdt = triangulate(&cover, &opts).map_err(|e| {
+        bad(format!(
+            "the given triangles do not form a valid mesh (their boundary edges: {e})"
+        ))
+    })?;
+    let fixed: std::collections::HashSet<(u32, u32)> =
+        cdt.segments.iter().map(|s| key(s[0], s[1])).collect();
+    let covered = |t: usize| cdt.triangle_attributes[t] == 1.0;
+    let ct = cdt.triangles.len();
+    // Uncovered triangles are joined to uncovered neighbours only.
+    let cnb = |t: usize, k: usize| {
+        let u = cdt.neighbors[t][k];
+        if covered(t) || (u != NONE && covered(u as usize)) {
+            NONE
+        } else {
+            u
+        }
+    };
+    let open = |t: usize, k: usize| {
+        let tri = cdt.triangles[t];
+        !fixed.contains(&key(tri[(k + 1) % 3], tri[(k + 2) % 3]))
+    };
+    let mut holes = Vec::new();
+    for comp in components(ct, cnb, open) {
+        let t = comp[0];
+        if covered(t) || comp.iter().any(|&u| cdt.neighbors[u].contains(&NONE)) {
+            continue;
+        }
+        holes.push(
+            seed_of(&cdt.vertices, &cdt.triangles, &comp).ok_or_else(|| {
+                bad("no point strictly inside an uncovered area could be found".into())
+            })?,
+        );
+    }
+    Ok(Pslg {
+        points: pts.clone(),
+        point_markers: input.point_markers.clone(),
+        segments,
+        segment_markers,
+        holes,
+        regions,
+    })
 }
 
 /// Reads Triangle's number after a switch: the longest run of digits and dots starting at
@@ -603,5 +907,228 @@ mod tests {
         assert_eq!(e[0], ([0, 1], 7));
         e.sort();
         assert_eq!(e, vec![([0, 1], 7), ([1, 2], 1), ([2, 3], 1), ([3, 0], 1)]);
+    }
+
+    /// A unit square with a square hole (0.3..0.7) and a segment at x = 0.15 splitting off a
+    /// strip, regions with attributes 1 (strip) and 2 (the rest), meshed to `a0.01`.
+    fn given_square_with_hole() -> (Pslg, TriMesh) {
+        let mut p = Pslg {
+            points: vec![
+                [0.0, 0.0],
+                [1.0, 0.0],
+                [1.0, 1.0],
+                [0.0, 1.0],
+                [0.3, 0.3],
+                [0.7, 0.3],
+                [0.7, 0.7],
+                [0.3, 0.7],
+                [0.15, 0.0],
+                [0.15, 1.0],
+            ],
+            holes: vec![[0.5, 0.5]],
+            ..Pslg::default()
+        };
+        p.segments = vec![
+            [0, 8],
+            [8, 1],
+            [1, 2],
+            [2, 9],
+            [9, 3],
+            [3, 0],
+            [4, 5],
+            [5, 6],
+            [6, 7],
+            [7, 4],
+            [8, 9],
+        ];
+        p.regions = vec![
+            Region {
+                point: [0.05, 0.5],
+                attribute: 1.0,
+                max_area: None,
+            },
+            Region {
+                point: [0.9, 0.5],
+                attribute: 2.0,
+                max_area: None,
+            },
+        ];
+        let opts = Options {
+            min_angle: Some(30.0),
+            max_area: Some(0.01),
+            region_attributes: true,
+            ..Options::default()
+        };
+        let m = triangulate(&p, &opts).unwrap();
+        m.validate().unwrap();
+        (p, m)
+    }
+
+    fn area_by_attribute(m: &TriMesh) -> HashMap<u64, f64> {
+        let mut out = HashMap::new();
+        for (t, tri) in m.triangles.iter().enumerate() {
+            let [a, b, c] = tri.map(|v| m.vertices[v as usize]);
+            *out.entry(m.triangle_attributes[t].to_bits()).or_insert(0.0) +=
+                0.5 * crate::geometry::area2(a, b, c);
+        }
+        out
+    }
+
+    fn given_of(m: &TriMesh) -> (Pslg, GivenMesh) {
+        let input = Pslg {
+            points: m.vertices.clone(),
+            point_markers: m.vertex_markers.clone(),
+            ..Pslg::default()
+        };
+        let given = GivenMesh {
+            triangles: m.triangles.clone(),
+            attributes: m.triangle_attributes.clone(),
+            max_areas: Vec::new(),
+        };
+        (input, given)
+    }
+
+    #[test]
+    fn a_given_mesh_is_remeshed_with_its_boundary_regions_and_points() {
+        let (_, m0) = given_square_with_hole();
+        let (input, given) = given_of(&m0);
+        let p = refine_input(&input, &given, false, 0).unwrap();
+        assert_eq!(p.holes.len(), 1, "the uncovered square is a hole");
+        assert!(p.holes[0].iter().all(|x| (0.3..0.7).contains(x)));
+        assert_eq!(p.regions.len(), 2, "one region per attribute");
+        // Boundary edges get marker 1, the edges between the two attributes marker 0.
+        let interface = p
+            .segments
+            .iter()
+            .zip(&p.segment_markers)
+            .filter(|(_, &k)| k == 0);
+        assert!(interface.clone().count() >= 1);
+        for (s, _) in interface {
+            assert!(s.iter().all(|&v| p.points[v as usize][0] == 0.15));
+        }
+        let sw = parse_library("rq30a0.001").unwrap();
+        let mut opts = sw.options(false);
+        opts.region_attributes = true;
+        let m1 = triangulate(&p, &opts).unwrap();
+        m1.validate().unwrap();
+        assert!(m1.triangles.len() > 4 * m0.triangles.len());
+        assert_eq!(m1.vertices[..m0.vertices.len()], m0.vertices[..]);
+        assert_eq!(
+            m1.vertex_markers[..m0.vertices.len()],
+            m0.vertex_markers[..]
+        );
+        let (a0, a1) = (area_by_attribute(&m0), area_by_attribute(&m1));
+        assert_eq!(a0.len(), 2);
+        for (k, v) in &a0 {
+            assert!((a1[k] - v).abs() < 1e-12, "{k}: {} != {v}", a1[k]);
+        }
+        assert!((a0[&1f64.to_bits()] - 0.15).abs() < 1e-12);
+    }
+
+    #[test]
+    fn per_triangle_area_bounds_refine_only_where_small() {
+        let (_, m0) = given_square_with_hole();
+        let (input, mut given) = given_of(&m0);
+        let centroid_x = |m: &TriMesh, t: usize| {
+            m.triangles[t]
+                .iter()
+                .map(|&v| m.vertices[v as usize][0])
+                .sum::<f64>()
+                / 3.0
+        };
+        let small: Vec<bool> = (0..m0.triangles.len())
+            .map(|t| centroid_x(&m0, t) > 0.7)
+            .collect();
+        given.max_areas = small
+            .iter()
+            .map(|&s| if s { 0.0005 } else { -1.0 })
+            .collect();
+        // The attributes tell the two parts apart in the output.
+        given.attributes = small.iter().map(|&s| f64::from(u8::from(s))).collect();
+        let sw = parse_library("ra").unwrap();
+        let p = refine_input(&input, &given, sw.region_area, 0).unwrap();
+        let mut opts = sw.options(false);
+        opts.region_attributes = true;
+        let m1 = triangulate(&p, &opts).unwrap();
+        m1.validate().unwrap();
+        let area = |m: &TriMesh, t: usize| {
+            let [a, b, c] = m.triangles[t].map(|v| m.vertices[v as usize]);
+            0.5 * crate::geometry::area2(a, b, c)
+        };
+        let (mut right, mut right_area, mut left) = (0, 0.0, 0.0f64);
+        for t in 0..m1.triangles.len() {
+            if m1.triangle_attributes[t] == 1.0 {
+                assert!(area(&m1, t) <= 0.0005);
+                right += 1;
+                right_area += area(&m1, t);
+            } else {
+                left = left.max(area(&m1, t));
+            }
+        }
+        assert!(
+            right as f64 >= right_area / 0.0005 && right_area > 0.1,
+            "{right} small triangles"
+        );
+        assert!(left > 0.002, "the unbounded part stays coarse: {left}");
+        given.attributes.clear();
+        // Without `a` the bounds play no part: no Steiner point at all.
+        let p = refine_input(&input, &given, false, 0).unwrap();
+        assert!(p.regions.is_empty());
+        let m2 = triangulate(&p, &Options::default()).unwrap();
+        assert_eq!(m2.steiner_points, 0);
+        assert_eq!(m2.triangles.len(), m0.triangles.len());
+    }
+
+    #[test]
+    fn bad_given_meshes_are_errors_naming_the_item() {
+        let (_, m0) = given_square_with_hole();
+        let (input, given) = given_of(&m0);
+        let n = input.points.len() as u32;
+        let mut g = given.clone();
+        g.triangles[3][1] = n;
+        let e = refine_input(&input, &g, false, 1).unwrap_err().to_string();
+        assert!(
+            e.contains("triangle 4") && e.contains(&format!("corner {}", n + 1)),
+            "{e}"
+        );
+        let mut g = given.clone();
+        g.triangles.push(g.triangles[0]);
+        g.attributes.push(1.0);
+        let e = refine_input(&input, &g, false, 0).unwrap_err().to_string();
+        assert!(e.contains("more than two triangles"), "{e}");
+        let mut g = given.clone();
+        g.attributes.pop();
+        let e = refine_input(&input, &g, false, 0).unwrap_err().to_string();
+        assert!(e.contains("attributes for"), "{e}");
+        let mut g = given.clone();
+        g.triangles[0] = [0, 8, 1];
+        let e = refine_input(&input, &g, false, 0).unwrap_err().to_string();
+        assert!(e.contains("triangle 0 is degenerate"), "{e}");
+        let e = refine_input(&input, &GivenMesh::default(), false, 0).unwrap_err();
+        assert!(e.to_string().contains("no triangles"), "{e}");
+    }
+
+    #[test]
+    fn yy_keeps_every_segment_whole() {
+        // The points of a mesh of the domain (some of them on the segments) with the domain's
+        // segments: refinement points away from the segments are possible.
+        let (mut p, m0) = given_square_with_hole();
+        p.points = m0.vertices.clone();
+        let n = p.points.len() as u32;
+        let sw = parse_library("pq30a0.002YY").unwrap();
+        let m = triangulate(&p, &sw.options(true)).unwrap();
+        m.validate_constrained().unwrap();
+        assert!(
+            m.segments.iter().flatten().all(|&v| v < n),
+            "a segment was split"
+        );
+        assert!(m.steiner_points > 50, "{} Steiner points", m.steiner_points);
+        let one_y = triangulate(&p, &parse_library("pq30a0.002Y").unwrap().options(true));
+        let one_y = one_y.unwrap();
+        one_y.validate_constrained().unwrap();
+        assert!(
+            one_y.segments.iter().flatten().any(|&v| v >= n),
+            "-Y splits the interior segment x = 0.15"
+        );
     }
 }

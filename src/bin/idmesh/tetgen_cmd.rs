@@ -58,6 +58,13 @@ Switches are letters that may be grouped, e.g. -pq1.414a0.1V:
               neighbouring facets with the same marker are meshed as one facet (the edges
               between them need not appear in the mesh); never with -Y. Duplicate
               vertices of surface files are merged all the same, as in TetGen
+  -T[TOL]     also merge nearly coplanar neighbouring facets (off by default: coplanarity is
+              decided exactly, and a flat tet at a tiny fold is for sliver removal): facets
+              whose vertices lie within TOL (-T alone: 1e-8, TetGen's default; at most 0.01)
+              times their longest edge of the plane of their group's largest facet are moved
+              exactly onto that plane and merged, so the boundary is within the tolerance of
+              the input, as TetGen's. A group with no exactly planar move is kept (-V counts
+              them). No effect with -M or -Y
   -k, -g      also write FILE.1.vtk (legacy VTK) / FILE.1.mesh (Medit), as TetGen does
   --format F  also write FILE.1.F: vtk, vtu (VTK XML), msh (Gmsh 4.1) or mesh (Medit)
   -r          refine FILE.node + FILE.ele (+ FILE.face, FILE.vol with -a): the mesh's boundary
@@ -78,9 +85,9 @@ Switches are letters that may be grouped, e.g. -pq1.414a0.1V:
   Point attributes of the input are written, interpolated linearly at Steiner points.
   -D -J -X    accepted: idmesh output is always conforming Delaunay, never drops unused
               vertices, and its arithmetic is always exact
-Numbers after q take digits and dots; after a and S also exponents, exactly as in TetGen
+Numbers after q take digits and dots; after a, S and T also exponents, exactly as in TetGen
 (so -a0.1e reads the volume 0.1e: put e first, -pea0.1).
-Not supported: -T and the viewer outputs; they are errors, never ignored.
+Not supported: -c and the viewer outputs; they are errors, never ignored.
 ";
 
 /// Runs `idmesh tetgen ARGS`.

@@ -6,10 +6,12 @@ use std::io::{self, Write};
 use std::time::{Duration, Instant};
 
 use idmesh::io::triangle::{
-    read_node, read_poly, write_edge, write_ele, write_neigh, write_node, write_poly,
-    write_poly_segments, TriangleInput,
+    read_area, read_ele, read_node, read_poly, write_edge, write_ele, write_neigh, write_node,
+    write_poly, write_poly_segments, TriangleInput,
 };
-use idmesh::switches::triangle::{output_segments, parse_command_line, Parsed, Switches};
+use idmesh::switches::triangle::{
+    output_segments, parse_command_line, refine_input, GivenMesh, Parsed, Switches,
+};
 use idmesh::{triangulate, Error, InputError, TriMesh};
 
 use crate::names::{self, Files};
@@ -17,7 +19,7 @@ use crate::progress_ui::{catch_interrupt, check_interrupt, Outputs, Progress};
 
 /// The switches `idmesh triangle` honours; the others Triangle knows are refused by name.
 const HONOURED: &[&str] = &[
-    "p", "q", "a", "A", "c", "D", "Y", "S", "z", "e", "n", "N", "E", "P", "Q", "V",
+    "p", "r", "q", "a", "A", "c", "D", "Y", "YY", "S", "z", "e", "n", "N", "E", "P", "Q", "V",
 ];
 
 /// The help text of `idmesh triangle --help`.
@@ -33,14 +35,20 @@ input (0 or 1), or starts at 0 with -z.
 
 Switches are letters that may be grouped, e.g. -pq30a0.01V:
   -p          read FILE.poly (segments, holes, regional attributes and area bounds)
+  -r          remesh a previous mesh: read FILE.node and FILE.ele (with -p the segments of
+              FILE.poly, with -a without a number the per-triangle bounds of FILE.area);
+              its boundary, its points (same numbers), its triangle attributes and area
+              bounds (as regions) are kept, its triangles are remeshed, not refined in place
   -q[ANGLE]   minimum angle in degrees (default 20; above about 34 it may not terminate)
   -a[AREA]    with a number: maximum triangle area; without: the .poly file's regional bounds
+              (with -r: the .area file's)
   -A          write each triangle's regional attribute to the .ele file
   -c          mesh the convex hull of the input, not only the area enclosed by segments
   -D          conforming Delaunay (accepted; idmesh output always is, except with -Y)
   -Y          no Steiner points on boundary segments (those with the domain on one side):
               the mesh is then constrained Delaunay, and triangles whose new vertex would
               encroach such a segment keep their bad angle or size, as in Triangle
+  -YY         no Steiner points on any segment, interior ones too (same consequences)
   -S[N]       at most N Steiner points (-S alone: none); a warning is printed if reached
   -z          number output items from 0
   -e          write an .edge file      -n   write a .neigh file
@@ -74,22 +82,50 @@ fn say(sw: &Switches, text: std::fmt::Arguments<'_>) {
 }
 
 fn run(sw: &Switches, file: &str) -> Result<(), String> {
-    let files = names::resolve(file, sw.poly);
+    let mut files = names::resolve(file, sw.poly);
+    let refined;
+    let sw = if sw.refine {
+        // With -r, FILE.node and FILE.ele are read (and FILE.poly's segments with -p); -c
+        // does nothing, as in Triangle.
+        files.poly = sw.poly;
+        if let Some(stem) = files.input.strip_suffix(".poly") {
+            files.input = format!("{stem}.node");
+        }
+        refined = Switches {
+            convex_hull: false,
+            ..sw.clone()
+        };
+        &refined
+    } else {
+        sw
+    };
     catch_interrupt()?;
     let progress = Progress::new(sw.quiet || sw.verbose);
     let start = Instant::now();
     say(sw, format_args!("Opening {}.", files.input));
     let path = std::path::Path::new(&files.input);
-    let input = if files.poly {
+    let input = if sw.refine {
+        read_given(sw, &files)
+    } else if files.poly {
         read_poly(path)
+            .map(|i| (i, false))
+            .map_err(|e| e.to_string())
     } else {
         read_node(path)
+            .map(|i| (i, false))
+            .map_err(|e| e.to_string())
     };
-    let input = input.map_err(|e| e.to_string())?;
+    let (input, given_attributes) = input?;
     check_interrupt()?;
     let read_time = start.elapsed();
 
     let mut opts = sw.options(files.poly);
+    if sw.refine {
+        // The given mesh's attributes are carried over (as Triangle does, -A or not); -c has
+        // no effect, the domain being the given triangles.
+        opts.region_attributes = given_attributes;
+        opts.convex_hull = false;
+    }
     opts.progress = Some(progress.callback());
     let mesh_start = Instant::now();
     let mesh = triangulate(&input.pslg, &opts).map_err(|e| describe(&e, &input, &files.input))?;
@@ -122,6 +158,42 @@ fn run(sw: &Switches, file: &str) -> Result<(), String> {
         statistics(&input, &mesh, [read_time, mesh_time, write_time]);
     }
     Ok(())
+}
+
+/// Reads what `-r` refines (see `refine_input`): `FILE.node`, `FILE.ele`, with `-p` the
+/// segments of `FILE.poly`, with `-a` without a number `FILE.area`. Returns the PSLG to mesh
+/// (numbered as `FILE.node`) and whether the triangles have attributes.
+fn read_given(sw: &Switches, files: &Files) -> Result<(TriangleInput, bool), String> {
+    let node = std::path::Path::new(&files.input);
+    let mut input = read_node(node).map_err(|e| e.to_string())?;
+    if sw.poly {
+        let poly = read_poly(&node.with_extension("poly")).map_err(|e| e.to_string())?;
+        input.pslg.segments = poly.pslg.segments;
+        input.pslg.segment_markers = poly.pslg.segment_markers;
+    }
+    let n = input.pslg.points.len();
+    let ele_path = node.with_extension("ele");
+    let ele_name = ele_path.display().to_string();
+    let ele = read_ele(&ele_path, input.base, n).map_err(|e| e.to_string())?;
+    if ele.num_attributes > 1 {
+        return Err(format!(
+            "{ele_name}: {} attributes per triangle; idmesh carries one (-r)",
+            ele.num_attributes
+        ));
+    }
+    let max_areas = if sw.region_area {
+        read_area(&node.with_extension("area"), ele.triangles.len()).map_err(|e| e.to_string())?
+    } else {
+        Vec::new()
+    };
+    let given = GivenMesh {
+        triangles: ele.triangles,
+        attributes: ele.attributes,
+        max_areas,
+    };
+    input.pslg = refine_input(&input.pslg, &given, sw.region_area, input.base)
+        .map_err(|e| format!("{ele_name}: {e}"))?;
+    Ok((input, !given.attributes.is_empty()))
 }
 
 /// A one-line message for a mesher error, with item numbers as in the input file.

@@ -68,7 +68,7 @@ fn facet_region_leaves_out_the_hole() {
 
 #[test]
 fn a_facet_filling_the_hole_of_another_is_fine_but_not_without_the_hole() {
-    // As in TetGen's example.poly: a facet with a hole, and another facet exactly in it.
+    // As in TetGen's example PLC: a facet with a hole, and another facet exactly in it.
     let mut plc = holed_wall();
     plc.facets.push(Facet {
         polygons: vec![vec![4, 5, 6, 7]],

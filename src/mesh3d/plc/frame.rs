@@ -2,7 +2,7 @@
 //! next to the origin by an exact translation before meshing, and the mesh is moved back.
 //!
 //! Why: a Steiner point is a floating-point construction (a midpoint, a circumcentre), rounded
-//! to the grid of representable numbers at the coordinates' magnitude. For `u.off` translated
+//! to the grid of representable numbers at the coordinates' magnitude. For a part 1 across translated
 //! by 1e6 that grid is 1.2e-10 while the features are 1e-2: every split point of a wall's
 //! edge lands off its line and off the facet's plane, the rectangles of the walls stop being
 //! exactly cocircular, the facet meshes and the 3D mesh break those near-ties differently,

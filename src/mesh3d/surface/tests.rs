@@ -269,7 +269,7 @@ fn an_open_surface_is_an_input_error_naming_its_faces() {
 #[test]
 fn a_non_manifold_edge_between_two_closed_parts_meshes() {
     // Two cubes sharing only the edge from (1, 0, 0) to (1, 0, 1) (four faces on it, its
-    // ends given twice), as in cubes.off: not an error.
+    // ends given twice), as exported models have them: not an error.
     let mut plc = cube();
     add_box(&mut plc, [1.0, -1.0, 0.0], [2.0, 0.0, 1.0], 1);
     let r = repair_surface(&plc).unwrap();

@@ -14,6 +14,10 @@
 //       within its area bound and every piece of the bounded segment within its length bound,
 //       while other faces are not forced below them; a bad bound throws 10;
 //   c   an L-shaped prism is meshed to its convex hull (volume 3.5 instead of 3);
+//   O, o/  optlevel is 0 unless O is given (idmesh stays Delaunay by default), O3/1o/150 is
+//       parsed into optlevel, optscheme and optmaxdihedral; optlevel 3 with optmaxdihedral 140
+//       set in the fields makes the cube's smallest dihedral angle larger and its largest not
+//       larger, keeping the volume; a bad optscheme throws 10.
 //   T   (epsilon) the cube with its top corner lowered by 1e-9: kept with TetGen's default
 //       epsilon (idmesh is exact unless asked), moved onto the top with another epsilon or an
 //       explicit -T; an epsilon above 0.01 throws 10.
@@ -380,8 +384,80 @@ static void test_epsilon() {
   check(code == 10, "epsilon 0.5 throws 10");
 }
 
+// Smallest and largest dihedral angle of the output, degrees.
+static void dihedral_range(const tetgenio &io, double *lo, double *hi) {
+  *lo = 180;
+  *hi = 0;
+  for (int t = 0; t < io.numberoftetrahedra; t++) {
+    const int *c = &io.tetrahedronlist[t * io.numberofcorners];
+    const REAL *p[4];
+    for (int k = 0; k < 4; k++) p[k] = pt(io, c[k]);
+    double n[4][3];
+    for (int i = 0; i < 4; i++) {
+      const REAL *a = p[(i + 1) % 4], *b = p[(i + 2) % 4], *d = p[(i + 3) % 4];
+      double u[3], v[3], w[3];
+      for (int k = 0; k < 3; k++) {
+        u[k] = b[k] - a[k];
+        v[k] = d[k] - a[k];
+        w[k] = p[i][k] - a[k];
+      }
+      double m[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+      double len = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+      double side = m[0] * w[0] + m[1] * w[1] + m[2] * w[2] > 0 ? -1 : 1;
+      for (int k = 0; k < 3; k++) n[i][k] = side * m[k] / len;
+    }
+    for (int i = 0; i < 4; i++)
+      for (int j = i + 1; j < 4; j++) {
+        double d = -(n[i][0] * n[j][0] + n[i][1] * n[j][1] + n[i][2] * n[j][2]);
+        double a = std::acos(std::max(-1.0, std::min(1.0, d))) * 180 / M_PI;
+        *lo = std::min(*lo, a);
+        *hi = std::max(*hi, a);
+      }
+  }
+}
+
+static void test_optimize() {
+  tetgenbehavior b;
+  check(b.optlevel == 0, "idmesh's tetgenbehavior does not optimise by default");
+  check(b.parse_commandline((char *)"pO3/1o/150Q") && b.optlevel == 3 && b.optscheme == 1 &&
+            b.optmaxdihedral == 150.0,
+        "O3/1o/150 sets optlevel, optscheme, optmaxdihedral");
+  double lo[2], hi[2], vol[2];
+  for (int o = 0; o < 2; o++) {
+    tetgenbehavior bb;
+    check(bb.parse_commandline((char *)"pq1.414a0.001Q"), "parse pq1.414a0.001Q");
+    check(bb.optlevel == 0, "no O: optlevel 0");
+    if (o) {
+      bb.optlevel = 3;
+      bb.optmaxdihedral = 140;
+    }
+    tetgenio in, out;
+    cube(in);
+    tetrahedralize(&bb, &in, &out);
+    dihedral_range(out, &lo[o], &hi[o]);
+    vol[o] = total_volume(out);
+  }
+  check(lo[1] > lo[0] && hi[1] <= hi[0], "optlevel 3 improves the dihedral angles");
+  check(std::fabs(vol[0] - 1) < 1e-12 && std::fabs(vol[1] - 1) < 1e-12,
+        "the optimised cube keeps its volume");
+  tetgenbehavior bad;
+  bad.parse_commandline((char *)"pqQ");
+  bad.optlevel = 2;
+  bad.optscheme = 9;
+  int code = 0;
+  try {
+    tetgenio in, out;
+    cube(in);
+    tetrahedralize(&bad, &in, &out);
+  } catch (int c) {
+    code = c;
+  }
+  check(code == 10, "optscheme 9 throws 10");
+}
+
 int main() {
   try {
+    test_optimize();
     test_epsilon();
     test_constraints(0);
     test_constraints(1);

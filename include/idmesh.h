@@ -527,6 +527,25 @@ typedef struct idm_options3d {
    * Appended after 0.2.0: a caller's older struct gets the default.
    */
   double coplanar_tolerance;
+  /**
+   * Mesh optimisation level (TetGen's `-O<level>`): 0 to 10 passes of flips and smoothing
+   * of interior Steiner vertices after meshing, which improve the extreme dihedral angles
+   * and never make them worse; the mesh is then no longer Delaunay (validate checks it
+   * without empty circumspheres). 0: none, the mesh stays Delaunay. Default 0. Added after
+   * 0.2.0, like the two fields below: a caller's older struct gets the defaults.
+   */
+  int32_t optimize_level;
+  /**
+   * The optimisation's operations (TetGen's `-O<level>/<scheme>`), bits: 1 flips, 2 vertex
+   * smoothing, 4 vertex insertion/deletion (accepted, not done); 0 to 7. Default 7.
+   */
+  int32_t optimize_scheme;
+  /**
+   * The optimisation's maximum dihedral angle target, degrees (TetGen's `-o/<angle>`):
+   * tetrahedra with a dihedral angle above it or below 180 minus it are worked on. Above 0
+   * and below 180, not NaN. Default 165.
+   */
+  double optimize_max_dihedral;
 } idm_options3d;
 
 /**
@@ -699,6 +718,21 @@ typedef struct idm_tetgen_switches {
    * 0 when there is none (coplanarity decided exactly).
    */
   double coplanar_tolerance;
+  /**
+   * `O<level>`: mesh optimisation passes (flips and smoothing; the mesh is then not
+   * Delaunay), 0 to 10; 0 when `O` is not given (idmesh's default: no optimisation).
+   */
+  int32_t optimize_level;
+  /**
+   * `O<level>/<scheme>`: the optimisation's operations, bits 1 flips, 2 smoothing, 4 vertex
+   * insertion/deletion (not done); 7 when not given.
+   */
+  int32_t optimize_scheme;
+  /**
+   * `o/<angle>`: the optimisation's maximum dihedral angle target, degrees; 165 when not
+   * given.
+   */
+  double optimize_max_dihedral;
 } idm_tetgen_switches;
 
 /**

@@ -212,13 +212,7 @@ pub fn tet_dihedrals(c: [[f64; 3]; 4]) -> [f64; 6] {
     // Face i is opposite corner i; its outward normal is n_i. The dihedral angle at the edge
     // shared by faces i and j is π minus the angle between their outward normals; that edge
     // joins the two other corners.
-    let p = c.map(v3);
-    let n: [DVec3; 4] = std::array::from_fn(|i| {
-        let f = [(i + 1) % 4, (i + 2) % 4, (i + 3) % 4].map(|k| p[k]);
-        let m = (f[1] - f[0]).cross(f[2] - f[0]);
-        let m = if m.dot(p[i] - f[0]) > 0.0 { -m } else { m };
-        m.normalize_or_zero()
-    });
+    let n = outward_normals(c);
     // Edge (a b) lies on faces (k l), the other two corners.
     [(2, 3), (1, 3), (1, 2), (0, 3), (0, 2), (0, 1)]
         .map(|(k, l): (usize, usize)| (-n[k].dot(n[l])).clamp(-1.0, 1.0).acos().to_degrees())
@@ -226,14 +220,67 @@ pub fn tet_dihedrals(c: [[f64; 3]; 4]) -> [f64; 6] {
 
 /// Smallest and largest dihedral angle of a tetrahedron, degrees.
 pub fn tet_dihedral_range(c: [[f64; 3]; 4]) -> (f64, f64) {
-    tet_dihedrals(c)
-        .iter()
-        .fold((180.0f64, 0.0f64), |(lo, hi), &a| (lo.min(a), hi.max(a)))
+    // The same values as the extremes of `tet_dihedrals` (acos is decreasing, so the extreme
+    // cosines give them), with two arc cosines instead of six: the sliver pass and the mesh
+    // optimisation call this in their inner loops.
+    let n = outward_normals(c);
+    let (mut dmin, mut dmax) = (f64::INFINITY, f64::NEG_INFINITY);
+    for (k, l) in [(2, 3), (1, 3), (1, 2), (0, 3), (0, 2), (0, 1)] {
+        let d = (-n[k].dot(n[l])).clamp(-1.0, 1.0);
+        dmin = dmin.min(d);
+        dmax = dmax.max(d);
+    }
+    (
+        dmax.acos().to_degrees().min(180.0),
+        dmin.acos().to_degrees().max(0.0),
+    )
+}
+
+/// The unit outward normals of the faces of a tetrahedron, face `i` opposite corner `i`.
+fn outward_normals(c: [[f64; 3]; 4]) -> [DVec3; 4] {
+    let p = c.map(v3);
+    std::array::from_fn(|i| {
+        let f = [(i + 1) % 4, (i + 2) % 4, (i + 3) % 4].map(|k| p[k]);
+        let m = (f[1] - f[0]).cross(f[2] - f[0]);
+        let m = if m.dot(p[i] - f[0]) > 0.0 { -m } else { m };
+        m.normalize_or_zero()
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn dihedral_range_is_the_extremes_of_the_six_angles() {
+        let tets = [
+            [
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 0.0, 1.0],
+            ],
+            [
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.3, 0.3, 1e-3],
+            ],
+            [
+                [0.1, 0.2, 0.3],
+                [5.0, -1.0, 2.0],
+                [0.5, 3.0, 0.1],
+                [1.0, 1.0, 7.0],
+            ],
+            [[0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+        ];
+        for c in tets {
+            let a = tet_dihedrals(c);
+            let lo = a.iter().fold(180.0f64, |m, &x| m.min(x));
+            let hi = a.iter().fold(0.0f64, |m, &x| m.max(x));
+            assert_eq!(tet_dihedral_range(c), (lo, hi), "{c:?}");
+        }
+    }
 
     #[test]
     fn circumcenter_is_equidistant() {

@@ -41,7 +41,9 @@ pub enum Stage {
     /// Quality and size refinement. `done` counts the Steiner points added so far, the
     /// estimate is `done` plus the work queued (it grows and shrinks as refinement goes).
     Refining,
-    /// Removing slivers (3D): the flat tetrahedra refinement leaves behind.
+    /// Removing slivers (3D): the flat tetrahedra refinement leaves behind; with mesh
+    /// optimisation (TetGen's `-O`) also the flips and smoothing after the output mesh is built
+    /// (`done` counts the bad tetrahedra of the pass treated so far).
     Slivers,
     /// Building the output mesh (and, on the command line, writing its files).
     Output,

@@ -397,6 +397,7 @@ fn two_tets() -> TetMesh {
         complete: true,
         steiner_points: 0,
         surface_kept: false,
+        optimized: false,
     }
 }
 

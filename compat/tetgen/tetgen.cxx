@@ -211,7 +211,16 @@ std::string switch_string(const tetgenbehavior *b) {
     snprintf(num, sizeof num, " o%d ", b->order);
     s += num;
   }
-  flag(b->optlevel != 2 || b->optscheme != 7, "O");
+  // Mesh optimisation (O, o/): idmesh's default is none (optlevel 0, see the constructor);
+  // the level is spelled whenever a field differs, so that o/ alone does not imply O here.
+  if (b->optlevel != 0 || b->optscheme != 7 || b->optmaxdihedral != 165.0) {
+    snprintf(num, sizeof num, " O%d/%d ", b->optlevel, b->optscheme);
+    s += num;
+  }
+  if (b->optmaxdihedral != 165.0) {
+    snprintf(num, sizeof num, " o/%.17f ", b->optmaxdihedral);
+    s += num;
+  }
   // TetGen's default epsilon stands for "no -T": idmesh decides coplanarity exactly unless a
   // tolerance is asked for (see `apply` for an explicit -T1e-8).
   if (b->epsilon != 1.0e-8) {
@@ -261,6 +270,9 @@ void apply(tetgenbehavior *b, const idm_tetgen_switches &w) {
   // given" in `switch_string`: the same tolerance, not lost on the way back.
   if (w.coplanar_tolerance > 0)
     b->epsilon = w.coplanar_tolerance == 1.0e-8 ? std::nextafter(1.0e-8, 1.0) : w.coplanar_tolerance;
+  b->optlevel = w.optimize_level;
+  b->optscheme = w.optimize_scheme;
+  b->optmaxdihedral = w.optimize_max_dihedral;
 }
 
 // The user's tetunsuitable as idmesh's sizing callback. A C++ exception it throws must not
@@ -606,7 +618,9 @@ tetgenbehavior::tetgenbehavior() {
   fliplinklevel = flipstarsize = -1;
   fliplinklevelinc = 1;
   reflevel = 3;
-  optlevel = 2;
+  // TetGen optimises by default (-O2/7), giving up the Delaunay property; idmesh only when
+  // asked: O in the switches or optlevel set above 0.
+  optlevel = 0;
   optscheme = 7;
   delmaxfliplevel = 1;
   order = 1;

@@ -96,6 +96,19 @@ pub struct idm_options3d {
     /// exact (the C API's default); must not be negative or NaN, and at most 0.01. Default 0.
     /// Appended after 0.2.0: a caller's older struct gets the default.
     pub coplanar_tolerance: f64,
+    /// Mesh optimisation level (TetGen's `-O<level>`): 0 to 10 passes of flips and smoothing
+    /// of interior Steiner vertices after meshing, which improve the extreme dihedral angles
+    /// and never make them worse; the mesh is then no longer Delaunay (validate checks it
+    /// without empty circumspheres). 0: none, the mesh stays Delaunay. Default 0. Added after
+    /// 0.2.0, like the two fields below: a caller's older struct gets the defaults.
+    pub optimize_level: i32,
+    /// The optimisation's operations (TetGen's `-O<level>/<scheme>`), bits: 1 flips, 2 vertex
+    /// smoothing, 4 vertex insertion/deletion (accepted, not done); 0 to 7. Default 7.
+    pub optimize_scheme: i32,
+    /// The optimisation's maximum dihedral angle target, degrees (TetGen's `-o/<angle>`):
+    /// tetrahedra with a dihedral angle above it or below 180 minus it are worked on. Above 0
+    /// and below 180, not NaN. Default 165.
+    pub optimize_max_dihedral: f64,
 }
 
 /// Quality figures of the current mesh (see `idm_mesher3d_stats`).
@@ -227,6 +240,11 @@ unsafe impl SizedOptions for idm_options3d {
             segment_constraints: std::ptr::null(),
             num_segment_constraints: 0,
             coplanar_tolerance: d.coplanar_tolerance.unwrap_or(0.0),
+            optimize_level: d.optimize_level as i32,
+            optimize_scheme: d.optimize_scheme.unwrap_or(crate::mesh3d::DEFAULT_SCHEME) as i32,
+            optimize_max_dihedral: d
+                .optimize_max_dihedral
+                .unwrap_or(crate::mesh3d::DEFAULT_MAX_DIHEDRAL),
         }
     }
 }
@@ -458,6 +476,7 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
                 ("max_volume", o.max_volume),
                 ("min_dihedral", o.min_dihedral),
                 ("coplanar_tolerance", o.coplanar_tolerance),
+                ("optimize_max_dihedral", o.optimize_max_dihedral),
             ])?;
             if o.coplanar_tolerance < 0.0 {
                 return Err(Failure::invalid(format!(
@@ -465,6 +484,8 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
                     o.coplanar_tolerance
                 )));
             }
+            let (optimize_level, optimize_scheme) =
+                optimize_ints(o.optimize_level, o.optimize_scheme)?;
             let facets = input_slice(
                 o.facet_constraints,
                 scaled(o.num_facet_constraints, 2, "num_facet_constraints")?,
@@ -493,10 +514,26 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
                 convex_hull: o.convex_hull != 0,
                 facet_max_area: bounds.facet_max_area,
                 segment_max_length: bounds.segment_max_length,
+                optimize_level,
+                optimize_scheme: Some(optimize_scheme),
+                optimize_max_dihedral: Some(o.optimize_max_dihedral),
             };
             Ok(())
         })
     }
+}
+
+/// The optimisation level and scheme of the C structs as the Rust options take them: negative
+/// values are refused here, too large ones by refine (`Options3`'s check).
+pub(crate) fn optimize_ints(level: i32, scheme: i32) -> Result<(u32, u32), Failure> {
+    let ok = |v: i32, name: &str, max: u32| {
+        u32::try_from(v)
+            .map_err(|_| Failure::invalid(format!("{name} {v} must be from 0 to {max}")))
+    };
+    Ok((
+        ok(level, "optimize_level", crate::mesh3d::MAX_LEVEL)?,
+        ok(scheme, "optimize_scheme", 7)?,
+    ))
 }
 
 /// Sets the user sizing test (see `idm_sizing3d_fn`); `fn` NULL clears it (`user` is then
@@ -996,6 +1033,7 @@ mod tests {
             complete: false,
             steiner_points: 3,
             surface_kept: false,
+            optimized: false,
         }
     }
 
@@ -1828,6 +1866,88 @@ mod tests {
         let h = &m.get_mut().opts;
         assert_eq!(h.radius_edge, Some(2.0));
         assert!(!h.surface_input, "beyond the caller's struct");
+    }
+
+    #[test]
+    fn optimisation_options_map_default_and_are_checked() {
+        let d = options(0.0, 0.0);
+        assert_eq!(
+            (d.optimize_level, d.optimize_scheme, d.optimize_max_dihedral),
+            (0, 7, 165.0),
+            "off by default: the mesh stays Delaunay"
+        );
+        // A struct that ends before the optimisation fields gets their defaults.
+        let mut o = options(1.414, 0.001);
+        o.optimize_level = 3;
+        o.struct_size = std::mem::offset_of!(idm_options3d, optimize_level);
+        let p = cube();
+        let m = Handle::new();
+        load(&m, &p);
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
+        assert_eq!(m.get().opts.optimize_level, 0, "beyond the caller's struct");
+        o.struct_size = size_of::<idm_options3d>();
+        o.min_dihedral = 0.0;
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
+        assert_eq!(
+            unsafe { idm_mesher3d_refine(m.0) },
+            IDM_OK,
+            "{}",
+            last_error()
+        );
+        let want = tetrahedralize(
+            &p,
+            &Options3 {
+                radius_edge: Some(1.414),
+                max_volume: Some(0.001),
+                min_dihedral: Some(0.0),
+                optimize_level: 3,
+                ..Options3::default()
+            },
+        )
+        .unwrap();
+        assert!(want.optimized, "the cube's slivers are flipped away");
+        assert_eq!(m.get().mesh.as_ref(), Some(&want));
+        // The getters lend the optimised mesh (the flag itself has no getter).
+        let got = read_back(&m);
+        assert_eq!(
+            got,
+            TetMesh {
+                optimized: false,
+                ..want.clone()
+            }
+        );
+        assert_eq!(
+            unsafe { idm_mesher3d_validate(m.0) },
+            IDM_OK,
+            "{}",
+            last_error()
+        );
+        for (field, value) in [("optimize_level", -1), ("optimize_scheme", -2)] {
+            let mut bad = o;
+            if field == "optimize_level" {
+                bad.optimize_level = value;
+            } else {
+                bad.optimize_scheme = value;
+            }
+            assert_eq!(
+                unsafe { idm_mesher3d_set_options(m.0, &bad) },
+                IDM_ERR_INVALID_ARGUMENT
+            );
+            assert!(last_error().contains(field), "{}", last_error());
+        }
+        let mut bad = o;
+        bad.optimize_max_dihedral = f64::NAN;
+        assert_eq!(
+            unsafe { idm_mesher3d_set_options(m.0, &bad) },
+            IDM_ERR_INVALID_ARGUMENT
+        );
+        bad.optimize_max_dihedral = 200.0;
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &bad) }, IDM_OK);
+        assert_eq!(
+            unsafe { idm_mesher3d_refine(m.0) },
+            IDM_ERR_INVALID_ARGUMENT
+        );
+        assert!(last_error().contains("200"), "{}", last_error());
     }
 
     #[test]

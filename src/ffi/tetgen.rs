@@ -93,6 +93,15 @@ pub struct idm_tetgen_switches {
     /// `T<tol>`: the relative tolerance for merging nearly coplanar facets (`T` alone: 1e-8);
     /// 0 when there is none (coplanarity decided exactly).
     pub coplanar_tolerance: f64,
+    /// `O<level>`: mesh optimisation passes (flips and smoothing; the mesh is then not
+    /// Delaunay), 0 to 10; 0 when `O` is not given (idmesh's default: no optimisation).
+    pub optimize_level: i32,
+    /// `O<level>/<scheme>`: the optimisation's operations, bits 1 flips, 2 smoothing, 4 vertex
+    /// insertion/deletion (not done); 7 when not given.
+    pub optimize_scheme: i32,
+    /// `o/<angle>`: the optimisation's maximum dihedral angle target, degrees; 165 when not
+    /// given.
+    pub optimize_max_dihedral: f64,
 }
 
 impl From<&TetSwitches> for idm_tetgen_switches {
@@ -129,6 +138,13 @@ impl From<&TetSwitches> for idm_tetgen_switches {
             order2: s.order2.into(),
             convex_hull: s.convex_hull.into(),
             coplanar_tolerance: s.coplanar_tolerance.unwrap_or(0.0),
+            optimize_level: s
+                .optimize_level
+                .map_or(0, |l| l.min(i32::MAX as u32) as i32),
+            optimize_scheme: s.optimize_scheme.unwrap_or(crate::mesh3d::DEFAULT_SCHEME) as i32,
+            optimize_max_dihedral: s
+                .optimize_max_dihedral
+                .unwrap_or(crate::mesh3d::DEFAULT_MAX_DIHEDRAL),
         }
     }
 }
@@ -140,6 +156,11 @@ impl idm_tetgen_switches {
         {
             return Err(Failure::invalid("a switch value (q, a or T) is NaN"));
         }
+        if self.optimize_max_dihedral.is_nan() {
+            return Err(Failure::invalid("optimize_max_dihedral (o/) is NaN"));
+        }
+        let (optimize_level, optimize_scheme) =
+            crate::ffi::mesh3d::optimize_ints(self.optimize_level, self.optimize_scheme)?;
         let positive = |x: f64| (x > 0.0).then_some(x);
         Ok(TetSwitches {
             plc: self.plc != 0,
@@ -177,6 +198,9 @@ impl idm_tetgen_switches {
             metric: self.metric != 0,
             order2: self.order2 != 0,
             convex_hull: self.convex_hull != 0,
+            optimize_level: (optimize_level > 0).then_some(optimize_level),
+            optimize_scheme: Some(optimize_scheme),
+            optimize_max_dihedral: Some(self.optimize_max_dihedral),
         })
     }
 }

@@ -587,6 +587,7 @@ mod tests {
             complete: true,
             steiner_points: 0,
             surface_kept: false,
+            optimized: false,
         }
     }
 

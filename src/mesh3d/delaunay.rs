@@ -192,5 +192,6 @@ fn to_mesh(tets: &Tets, input_of: &[u32], points: &[[f64; 3]]) -> TetMesh {
         complete: true,
         steiner_points: 0,
         surface_kept: false,
+        optimized: false,
     }
 }

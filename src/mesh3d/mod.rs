@@ -14,6 +14,7 @@ mod facet_mesh;
 mod features;
 #[cfg(test)]
 mod kernel_tests;
+mod optimize;
 mod order;
 mod output;
 mod plc;
@@ -27,6 +28,7 @@ use std::fmt;
 use std::sync::Arc;
 
 pub use coplanar::{snap_nearly_coplanar_facets, SnapReport};
+pub use optimize::{DEFAULT_MAX_DIHEDRAL, DEFAULT_SCHEME, MAX_LEVEL};
 pub use output::{TetMesh, TetStats, DIHEDRAL_BINS};
 pub use plc::sliver::DEFAULT_MIN_DIHEDRAL;
 pub use surface::{repair_surface, SurfaceRepair, SurfaceWarning};
@@ -127,6 +129,20 @@ pub struct Options3 {
     /// default: a flat tetrahedron between nearly coplanar facets is then for sliver removal
     /// to fix. Must be positive and at most [`MAX_COPLANAR_TOLERANCE`]. Default: `None`.
     pub coplanar_tolerance: Option<f64>,
+    /// Mesh optimisation (TetGen's `-O<level>`): after meshing, `optimize_level` passes (0 to
+    /// [`MAX_LEVEL`]) of flips and smoothing of interior Steiner vertices that improve the
+    /// extreme dihedral angles and never make them worse; the mesh is then no longer Delaunay
+    /// ([`TetMesh::optimized`]). Facets, segments, regions and input vertices are kept (see the
+    /// optimize module's docs). 0: none, the mesh stays Delaunay. Default: 0.
+    pub optimize_level: u32,
+    /// The optimisation's operations (TetGen's `-O<level>/<scheme>`), bits: 1 flips, 2 vertex
+    /// smoothing, 4 vertex insertion and deletion (accepted, not done). `None`:
+    /// [`DEFAULT_SCHEME`] (7). Default: `None`.
+    pub optimize_scheme: Option<u32>,
+    /// The optimisation's maximum dihedral angle target in degrees (TetGen's `-o/<angle>`):
+    /// tetrahedra with a dihedral angle above it or below 180° minus it are worked on. Must be
+    /// above 0 and below 180. `None`: [`DEFAULT_MAX_DIHEDRAL`] (165). Default: `None`.
+    pub optimize_max_dihedral: Option<f64>,
 }
 
 /// The largest [`Options3::coplanar_tolerance`] accepted: a fold of one hundredth of a
@@ -152,6 +168,9 @@ impl fmt::Debug for Options3 {
             .field("facet_max_area", &self.facet_max_area)
             .field("segment_max_length", &self.segment_max_length)
             .field("coplanar_tolerance", &self.coplanar_tolerance)
+            .field("optimize_level", &self.optimize_level)
+            .field("optimize_scheme", &self.optimize_scheme)
+            .field("optimize_max_dihedral", &self.optimize_max_dihedral)
             .finish()
     }
 }
@@ -211,7 +230,25 @@ pub fn tetrahedralize(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
             let merged = merge
                 .then(|| coplanar::merge_coplanar_facets(plc))
                 .flatten();
-            let mesh = plc::mesh_plc(merged.as_ref().unwrap_or(plc), opts)?;
+            let mut mesh = plc::mesh_plc(merged.as_ref().unwrap_or(plc), opts)?;
+            if opts.optimize_level > 0 {
+                // Reported in the Slivers stage; `mesh_plc` enters Output only without -O.
+                stage(Stage::Slivers, || (0, 0))?;
+                let c = optimize::optimize(
+                    &mut mesh,
+                    opts.optimize_level,
+                    opts.optimize_scheme.unwrap_or(DEFAULT_SCHEME),
+                    opts.optimize_max_dihedral.unwrap_or(DEFAULT_MAX_DIHEDRAL),
+                )?;
+                if opts.verbose {
+                    eprintln!(
+                        "optimisation: {} passes, {} 2-3, {} 3-2 and {} 4-4 flips, {} other edge \
+                         removals, {} vertices moved",
+                        c.passes, c.flips23, c.flips32, c.flips44, c.edge_removals, c.moves
+                    );
+                }
+                stage(Stage::Output, || (0, mesh.tets.len() as u64))?;
+            }
             validate::check_output(&mesh)?;
             Ok(mesh)
         })
@@ -263,6 +300,26 @@ fn check_options(opts: &Options3) -> Result<(), Error> {
         return Err(Error::InvalidOption(format!(
             "maximum length {l} of segment {a}-{b} must be a positive number"
         )));
+    }
+    if opts.optimize_level > MAX_LEVEL {
+        return Err(Error::InvalidOption(format!(
+            "optimisation level {} must be from 0 to {MAX_LEVEL}",
+            opts.optimize_level
+        )));
+    }
+    if let Some(s) = opts.optimize_scheme.filter(|&s| s > 7) {
+        return Err(Error::InvalidOption(format!(
+            "optimisation scheme {s} must be from 0 to 7 (bits: 1 flips, 2 smoothing, 4 \
+             vertex insertion/deletion)"
+        )));
+    }
+    if let Some(a) = opts.optimize_max_dihedral {
+        if !(a.is_finite() && a > 0.0 && a < 180.0) {
+            return Err(Error::InvalidOption(format!(
+                "optimisation maximum dihedral angle {a} must be a number above 0 and below \
+                 180 degrees"
+            )));
+        }
     }
     if let Some(t) = opts.coplanar_tolerance {
         if !(t.is_finite() && t > 0.0 && t <= MAX_COPLANAR_TOLERANCE) {

@@ -43,6 +43,11 @@ pub struct TetMesh {
     /// subface has input vertices only, and the tetrahedra next to the surface need not be
     /// Delaunay. [`TetMesh::validate`] then checks that instead of empty circumspheres.
     pub surface_kept: bool,
+    /// The mesh was optimised by flips and vertex smoothing (`Options3::optimize_level`,
+    /// TetGen's `-O`) and is in general no longer Delaunay. [`TetMesh::validate`] then checks
+    /// structure, orientation and conformity (every subface a face and every subsegment an
+    /// edge of a tetrahedron) but not empty circumspheres.
+    pub optimized: bool,
 }
 
 /// Quality figures of a tetrahedral mesh, as printed by `idmesh tetgen -V`.
@@ -119,7 +124,8 @@ impl TetMesh {
     /// Checks the mesh invariants exactly: positive orientation, neighbour symmetry, every
     /// subface a face of the mesh, and every circumsphere empty of all mesh vertices, or, for
     /// a mesh that keeps the input surface ([`TetMesh::surface_kept`]), no Steiner vertex on a
-    /// subface.
+    /// subface; for an optimised mesh ([`TetMesh::optimized`]), every subsegment an edge of the
+    /// mesh instead of the empty circumspheres.
     pub fn validate(&self) -> Result<(), Error> {
         super::validate::validate_mesh(self)
     }

@@ -278,7 +278,10 @@ fn mesh_plc_in(
             return Ok((None, m.steiner));
         }
     }
-    stage(Stage::Output, || (0, 4 * m.tets.num_slots() as u64))?;
+    // With -O the optimisation (`super::optimize`, after this) comes before Output.
+    if opts.optimize_level == 0 {
+        stage(Stage::Output, || (0, 4 * m.tets.num_slots() as u64))?;
+    }
     Ok((Some(m.output(plc)?), m.steiner))
 }
 
@@ -1471,6 +1474,7 @@ impl Mesher<'_> {
             complete: self.complete,
             steiner_points,
             surface_kept: self.walled,
+            optimized: false,
         };
         let _ = ekey;
         Ok(mesh)

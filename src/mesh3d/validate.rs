@@ -16,7 +16,8 @@ use crate::predicates::{insphere_fast as insphere, orient3d_fast as orient3d};
 /// Checks a tet mesh exactly: index ranges and array lengths; every tet positively oriented;
 /// neighbours mutual, sharing the right three vertices, on opposite sides of them; no face in
 /// more than two tets; every subface a face of some tet; every circumsphere empty of all mesh
-/// vertices, or, when the mesh keeps the input surface, no Steiner vertex on a subface. The
+/// vertices, or, when the mesh keeps the input surface, no Steiner vertex on a subface (and
+/// for an optimised mesh, every subsegment an edge instead of the empty circumspheres). The
 /// error names the first offending tet, face or vertex.
 pub fn validate_mesh(mesh: &TetMesh) -> Result<(), Error> {
     check_mesh(mesh).map_err(|m| Error::Internal(format!("mesh check failed: {m}")))
@@ -204,11 +205,37 @@ fn check_mesh(m: &TetMesh) -> Result<(), String> {
         }
     }
     check_edge_winding(m)?;
-    if m.surface_kept {
-        // Not Delaunay next to the surface (see `TetMesh::surface_kept`).
+    if m.optimized {
+        // Flips and smoothing give up the Delaunay property (`TetMesh::optimized`); what they
+        // must keep is checked instead: every subsegment is still an edge of the mesh.
+        check_subsegments(m)?;
+    }
+    if m.surface_kept || m.optimized {
+        // Not Delaunay next to the surface (see `TetMesh::surface_kept`) or anywhere.
         return Ok(());
     }
     check_empty_spheres(m)
+}
+
+/// Every subsegment is an edge of some tetrahedron.
+fn check_subsegments(m: &TetMesh) -> Result<(), String> {
+    let mut edges: crate::hash::FastSet<[u32; 2]> = crate::hash::FastSet::default();
+    for tv in &m.tets {
+        for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+            edges.insert([tv[i].min(tv[j]), tv[i].max(tv[j])]);
+        }
+    }
+    match m
+        .edges
+        .iter()
+        .enumerate()
+        .find(|(_, e)| !edges.contains(&[e[0].min(e[1]), e[0].max(e[1])]))
+    {
+        Some((i, e)) => Err(format!(
+            "subsegment {i} {e:?} is not an edge of any tetrahedron"
+        )),
+        None => Ok(()),
+    }
 }
 
 fn check_lengths(m: &TetMesh) -> Result<(), String> {

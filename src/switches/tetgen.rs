@@ -89,6 +89,13 @@ pub struct TetSwitches {
     pub order2: bool,
     /// `c`: mesh the convex hull of the input, keeping the PLC inside it.
     pub convex_hull: bool,
+    /// `O[level][/scheme]`: optimise the mesh by flips and smoothing, `level` passes (`O`
+    /// alone: 2; implied by `o/<angle>`). `None` without `O`: the mesh stays Delaunay.
+    pub optimize_level: Option<u32>,
+    /// The `/scheme` of `O` (bits 1 flips, 2 smoothing, 4 vertex insertion/deletion).
+    pub optimize_scheme: Option<u32>,
+    /// `o/<angle>` (also `o2/<angle>`): the optimisation's maximum dihedral angle target.
+    pub optimize_max_dihedral: Option<f64>,
     /// `k` (VTK), `g` (Medit), and on the command line `--format NAME`: further output files
     /// in these exchange formats.
     pub formats: Vec<Format>,
@@ -113,7 +120,6 @@ fn unsupported(c: char) -> Option<&'static str> {
     Some(match c {
         'w' => "weighted Delaunay triangulations",
         'R' => "reversing tetrahedron orientation",
-        'O' => "non-Delaunay mesh optimization; -q removes slivers keeping the mesh Delaunay",
         's' => "piecewise smooth complexes",
         'l' | 'L' | 'b' => "choosing the insertion algorithm",
         'v' => "Voronoi diagram output",
@@ -258,29 +264,69 @@ pub fn parse_group(arg: &str, sw: &mut TetSwitches) -> Result<(), String> {
             'r' => sw.refine = true,
             'i' => sw.insert_points = true,
             'm' => sw.metric = true,
-            'o' => match chars.get(j + 1) {
-                Some('2') => {
-                    sw.order2 = true;
+            'o' => {
+                match chars.get(j + 1) {
+                    Some('2') => {
+                        sw.order2 = true;
+                        j += 1;
+                    }
+                    Some('1') => {
+                        sw.order2 = false;
+                        j += 1;
+                    }
+                    Some(c) if c.is_ascii_digit() => {
+                        return Err(format!(
+                            "-o{c}: only -o2 (second-order tetrahedra) is supported (in '{arg}')"
+                        ))
+                    }
+                    _ => {}
+                }
+                // TetGen 1.5's `o/<angle>`: the optimisation's maximum dihedral angle.
+                if chars.get(j + 1).is_some_and(|c| *c == '/' || *c == ',') {
                     j += 1;
+                    let run = run_after(&chars, &mut j, plain_number).ok_or_else(|| {
+                        format!("-o/ needs a maximum dihedral angle after the '/' (in '{arg}')")
+                    })?;
+                    let a = strtod(&run);
+                    if !(a > 0.0 && a < 180.0) {
+                        return Err(format!(
+                            "-o/{run}: the optimisation's maximum dihedral angle must be above \
+                             0 and below 180 degrees (in '{arg}')"
+                        ));
+                    }
+                    sw.optimize_max_dihedral = Some(a);
                 }
-                Some('1') => {
-                    sw.order2 = false;
+            }
+            'O' => {
+                let digits = |j: &mut usize| run_after(&chars, j, |c| c.is_ascii_digit());
+                let level = match digits(&mut j) {
+                    Some(d) => d
+                        .parse::<u32>()
+                        .ok()
+                        .filter(|&l| l <= crate::mesh3d::MAX_LEVEL)
+                        .ok_or_else(|| {
+                            format!(
+                                "-O{d}: the optimisation level must be from 0 to {} (in '{arg}')",
+                                crate::mesh3d::MAX_LEVEL
+                            )
+                        })?,
+                    None => 2,
+                };
+                sw.optimize_level = Some(level);
+                if chars.get(j + 1).is_some_and(|c| *c == '/' || *c == ',') {
                     j += 1;
+                    let bad = |d: &str| {
+                        format!(
+                            "-O{level}/{d}: the optimisation scheme must be a number from 0 to 7 \
+                             (bits: 1 flips, 2 smoothing, 4 vertex insertion/deletion) (in \
+                             '{arg}')"
+                        )
+                    };
+                    let d = digits(&mut j).ok_or_else(|| bad(""))?;
+                    let scheme = d.parse::<u32>().ok().filter(|&s| s <= 7);
+                    sw.optimize_scheme = Some(scheme.ok_or_else(|| bad(&d))?);
                 }
-                Some('/') => {
-                    return Err(format!(
-                        "-o/<angle> (the maximum dihedral angle for TetGen's mesh optimization) \
-                         is not supported: idmesh does not optimize by flips and smoothing (in \
-                         '{arg}')"
-                    ))
-                }
-                Some(c) if c.is_ascii_digit() => {
-                    return Err(format!(
-                        "-o{c}: only -o2 (second-order tetrahedra) is supported (in '{arg}')"
-                    ))
-                }
-                _ => {}
-            },
+            }
             'h' | 'H' | '?' => {
                 return Err(format!(
                     "-{} inside a switch group; use 'idmesh tetgen --help'",
@@ -289,7 +335,7 @@ pub fn parse_group(arg: &str, sw: &mut TetSwitches) -> Result<(), String> {
             }
             c if c.is_ascii_digit() || "+-./,".contains(c) => {
                 return Err(format!(
-                    "unexpected '{c}' in '{arg}': only p, q, a, S and T take numbers, right \
+                    "unexpected '{c}' in '{arg}': only p, q, a, S, T, O and o take numbers, right \
                      after the letter"
                 ))
             }
@@ -319,13 +365,19 @@ pub fn format_option(name: &str) -> Result<Format, String> {
 }
 
 /// Applies the implications as TetGen applies them: `a<volume>` turns on `q`; `q` and `d` turn
-/// on `p`, unless `r` (a mesh is read, not a PLC).
+/// on `p`, unless `r` (a mesh is read, not a PLC); and idmesh's own: `o/<angle>` turns on
+/// `O`.
 pub fn finish(sw: &mut TetSwitches) {
     if sw.max_volume.is_some() && sw.radius_edge.is_none() {
         sw.radius_edge = Some(2.0);
     }
     if (sw.radius_edge.is_some() || sw.detect) && !sw.refine {
         sw.plc = true;
+    }
+    // `o/<angle>` sets the target of TetGen's optimisation, on by default there; idmesh's is
+    // off unless asked for, and the angle asks for it.
+    if sw.optimize_max_dihedral.is_some() && sw.optimize_level.is_none() {
+        sw.optimize_level = Some(2);
     }
 }
 
@@ -460,6 +512,9 @@ impl TetSwitches {
             coplanar_tolerance: self.coplanar_tolerance,
             verbose: self.verbose && !self.quiet,
             convex_hull: self.convex_hull,
+            optimize_level: self.optimize_level.unwrap_or(0),
+            optimize_scheme: self.optimize_scheme,
+            optimize_max_dihedral: self.optimize_max_dihedral,
             ..Options3::default()
         }
     }
@@ -824,13 +879,50 @@ mod tests {
         assert!(!s.order2, "-o1 is first order");
         let e = run(&["-po3", "x"]).unwrap_err();
         assert!(e.contains("-o3") && e.contains("o2"), "{e}");
-        let e = run(&["-po/150", "x"]).unwrap_err();
-        assert!(e.contains("-o/") && e.contains("not supported"), "{e}");
+        let (s, _) = run(&["-po/150", "x"]).unwrap();
+        assert_eq!(s.optimize_max_dihedral, Some(150.0));
+        assert_eq!(s.optimize_level, Some(2), "o/<angle> implies O");
+        let (s, _) = run(&["-po2/150.5e", "x"]).unwrap();
+        assert!(s.order2 && s.edges);
+        assert_eq!(s.optimize_max_dihedral, Some(150.5));
         // o2 followed by other letters.
         let (s, _) = run(&["-po2e", "x"]).unwrap();
         assert!(s.order2 && s.edges);
         let s = parse_string("pq1.414o2").unwrap();
         assert!(s.order2 && s.plc);
+    }
+
+    #[test]
+    fn optimisation_level_scheme_and_angle() {
+        let (s, _) = run(&["-pq1.414O", "x"]).unwrap();
+        assert_eq!((s.optimize_level, s.optimize_scheme), (Some(2), None));
+        assert_eq!(s.options().optimize_level, 2);
+        let (s, _) = run(&["-pO3/1V", "x"]).unwrap();
+        assert_eq!((s.optimize_level, s.optimize_scheme), (Some(3), Some(1)));
+        assert!(s.verbose);
+        let o = s.options();
+        assert_eq!((o.optimize_level, o.optimize_scheme), (3, Some(1)));
+        let (s, _) = run(&["-pO10,7", "x"]).unwrap();
+        assert_eq!((s.optimize_level, s.optimize_scheme), (Some(10), Some(7)));
+        let (s, _) = run(&["-pO0o/150", "x"]).unwrap();
+        assert_eq!(s.optimize_level, Some(0), "an explicit O0 stays off");
+        let (s, _) = run(&["-pq", "x"]).unwrap();
+        assert_eq!(
+            s.options().optimize_level,
+            0,
+            "no O: the mesh stays Delaunay"
+        );
+        for (bad, words) in [
+            ("-pO11", ["-O11", "level"]),
+            ("-pO2/9", ["-O2/9", "scheme"]),
+            ("-pO2/", ["-O2/", "scheme"]),
+            ("-po/0", ["-o/0", "angle"]),
+            ("-po/180", ["-o/180", "angle"]),
+            ("-po/", ["-o/", "angle"]),
+        ] {
+            let e = run(&[bad, "x"]).unwrap_err();
+            assert!(words.iter().all(|w| e.contains(w)), "{bad}: {e}");
+        }
     }
 
     #[test]

@@ -250,6 +250,13 @@ pub fn mesh_for(
     }
     let mesh = if sw.plc || sw.refine {
         tetrahedralize(plc, &opts)?
+    } else if opts.optimize_level > 0 {
+        // Never ignored: the Delaunay tetrahedralization of a point set has no optimisation.
+        return Err(Error::InvalidOption(
+            "-O (mesh optimisation) needs -p or -r; a point set's Delaunay \
+             tetrahedralization is not optimised"
+                .into(),
+        ));
     } else {
         let mut mesh = delaunay3d(&plc.points)?;
         let n = plc.point_markers.len().min(mesh.vertex_markers.len());

@@ -76,12 +76,18 @@ Switches are letters that may be grouped, e.g. -pq1.414a0.1V:
               split while its longest edge exceeds the size at its centroid
   -o2         10-node tetrahedra: edge midpoints after the vertices in .node, TetGen 1.5's
               node order in .ele
+  -O[L][/S]   optimise the mesh (off by default; TetGen runs -O2/7): L passes (0-10, -O
+              alone: 2) of flips (scheme bit 1) and smoothing of interior Steiner points
+              (bit 2; bit 4, vertex insertion/deletion, is not done), each kept only when the
+              extreme dihedral angles improve. The mesh is then no longer Delaunay; facets,
+              segments, regions and input points are kept. With -p or -r only
+  -o/ANGLE    the maximum dihedral angle the optimisation aims at (default 165); implies -O
   Point attributes of the input are written, interpolated linearly at Steiner points.
   -D -J -X    accepted: idmesh output is always conforming Delaunay, never drops unused
               vertices, and its arithmetic is always exact
 Numbers after q take digits and dots; after a, S and T also exponents, exactly as in TetGen
 (so -a0.1e reads the volume 0.1e: put e first, -pea0.1).
-Not supported: -c, -O, -o/ANGLE and the viewer outputs; they are errors, never ignored.
+Not supported: -c and the viewer outputs; they are errors, never ignored.
 ";
 
 /// Runs `idmesh tetgen ARGS`.
@@ -275,5 +281,8 @@ fn statistics(p: &Plc, mesh: &TetMesh, [read, meshing, write]: [Duration; 3]) {
     );
     if !mesh.complete {
         println!("The Steiner point limit was reached: the mesh is incomplete.");
+    }
+    if mesh.optimized {
+        println!("The mesh was optimised (-O) by flips and smoothing: it is no longer Delaunay.");
     }
 }

@@ -733,6 +733,11 @@ typedef struct idm_tetgen_switches {
    * given.
    */
   double optimize_max_dihedral;
+  /**
+   * `q<ratio>/<angle>`: the minimum dihedral angle sliver removal aims at, degrees (0 turns
+   * it off); negative when no angle was given (the library's default target).
+   */
+  double min_dihedral;
 } idm_tetgen_switches;
 
 /**

@@ -273,6 +273,7 @@ void apply(tetgenbehavior *b, const idm_tetgen_switches &w) {
   b->optlevel = w.optimize_level;
   b->optscheme = w.optimize_scheme;
   b->optmaxdihedral = w.optimize_max_dihedral;
+  b->mindihedral = w.min_dihedral > 0 ? w.min_dihedral : 0.0;
 }
 
 // The user's tetunsuitable as idmesh's sizing callback. A C++ exception it throws must not

@@ -102,6 +102,9 @@ pub struct idm_tetgen_switches {
     /// `o/<angle>`: the optimisation's maximum dihedral angle target, degrees; 165 when not
     /// given.
     pub optimize_max_dihedral: f64,
+    /// `q<ratio>/<angle>`: the minimum dihedral angle sliver removal aims at, degrees (0 turns
+    /// it off); negative when no angle was given (the library's default target).
+    pub min_dihedral: f64,
 }
 
 impl From<&TetSwitches> for idm_tetgen_switches {
@@ -145,6 +148,7 @@ impl From<&TetSwitches> for idm_tetgen_switches {
             optimize_max_dihedral: s
                 .optimize_max_dihedral
                 .unwrap_or(crate::mesh3d::DEFAULT_MAX_DIHEDRAL),
+            min_dihedral: s.min_dihedral.unwrap_or(-1.0),
         }
     }
 }
@@ -156,6 +160,9 @@ impl idm_tetgen_switches {
         {
             return Err(Failure::invalid("a switch value (q, a or T) is NaN"));
         }
+        if self.min_dihedral.is_nan() {
+            return Err(Failure::invalid("min_dihedral (q/) is NaN"));
+        }
         if self.optimize_max_dihedral.is_nan() {
             return Err(Failure::invalid("optimize_max_dihedral (o/) is NaN"));
         }
@@ -165,8 +172,7 @@ impl idm_tetgen_switches {
         Ok(TetSwitches {
             plc: self.plc != 0,
             radius_edge: positive(self.radius_edge),
-            // Not in this struct: the library's default target applies with `q`.
-            min_dihedral: None,
+            min_dihedral: (self.min_dihedral >= 0.0).then_some(self.min_dihedral),
             max_volume: positive(self.max_volume),
             region_volume: self.region_volume != 0,
             region_attributes: self.region_attributes != 0,
@@ -1181,6 +1187,18 @@ mod tests {
         let back = t.to_switches().ok().unwrap();
         assert_eq!(back.coplanar_tolerance, Some(1e-7));
         assert_eq!(back.options().coplanar_tolerance, Some(1e-7));
+        // q's minimum dihedral angle goes through the struct: given, off (/0), not given.
+        for (sw, angle, target) in [
+            ("pq1.414/10", 10.0, Some(10.0)),
+            ("pq1.414/0", 0.0, Some(0.0)),
+            ("pq1.414", -1.0, None),
+        ] {
+            let q = parse(sw).unwrap();
+            assert_eq!(q.min_dihedral, angle, "{sw}");
+            let back = q.to_switches().ok().unwrap();
+            assert_eq!(back.min_dihedral, target, "{sw}");
+            assert_eq!(back.options().min_dihedral, target, "{sw}");
+        }
         let (st, msg) = parse("pT2").unwrap_err();
         assert_eq!(st, idm_status::IDM_ERR_INVALID_ARGUMENT);
         assert!(msg.contains("-T"), "{msg}");

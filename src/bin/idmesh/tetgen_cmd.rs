@@ -87,7 +87,7 @@ Switches are letters that may be grouped, e.g. -pq1.414a0.1V:
               vertices, and its arithmetic is always exact
 Numbers after q take digits and dots; after a, S and T also exponents, exactly as in TetGen
 (so -a0.1e reads the volume 0.1e: put e first, -pea0.1).
-Not supported: -c and the viewer outputs; they are errors, never ignored.
+Not supported: -w -R -s -l -L -b -v -G -K -j and -p<tol>; they are errors, never ignored.
 ";
 
 /// Runs `idmesh tetgen ARGS`.

@@ -2,7 +2,8 @@
  * A C client of compat/triangle/triangle.h written as Triangle's users write one: REAL, VOID
  * and ANSI_DECLARATORS defined before the include, a triangulateio zeroed by hand, outputs
  * freed with trifree. It meshes a square with a hole, an internal segment and two regions in
- * 1-based and 0-based numbering, remeshes a mesh with -r (T lines: the given triangles, their
+ * 1-based and 0-based numbering, with two point attributes linear in x and y (which must come
+ * out linear at every vertex, Steiner points included, as Triangle interpolates them), remeshes a mesh with -r (T lines: the given triangles, their
  * attribute and area bound), and prints each input and mesh (read by
  * triangle_compare.py, which meshes the same input with Triangle itself and compares), then
  * feeds bad input and checks that each call returns with empty outputs and a message, and that
@@ -54,6 +55,43 @@ static int point_markers[] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
 static int segments0[] = {0, 8, 8, 1, 1, 2, 2, 9, 9, 3, 3, 0, 4, 5, 5, 6, 6, 7, 7, 4, 8, 9};
 static int segment_markers[] = {2, 2, 3, 4, 4, 5, 6, 6, 6, 6, 7};
 static REAL holes[] = {2, 2};
+/* Two point attributes, linear in x and y: Triangle interpolates them linearly at new vertices,
+ * so every output vertex must carry these functions of its coordinates (to rounding). */
+#define ATTR0(x, y) (2.0 * (x) - 3.0 * (y) + 1.0)
+#define ATTR1(x, y) (0.5 * (y) - 7.0)
+
+/* Counts the output vertices whose attributes are not the linear functions above (relative
+ * error above 1e-12), or all of them when there are not 2 per vertex. */
+static int bad_attributes(const struct triangulateio *out) {
+  int i, bad = 0;
+  if (out->numberofpointattributes != 2 || out->pointattributelist == NULL)
+    return out->numberofpoints > 0 ? out->numberofpoints : 1;
+  for (i = 0; i < out->numberofpoints; i++) {
+    double x = out->pointlist[2 * i], y = out->pointlist[2 * i + 1];
+    double want[2], *got = &out->pointattributelist[2 * i];
+    int k;
+    want[0] = ATTR0(x, y);
+    want[1] = ATTR1(x, y);
+    for (k = 0; k < 2; k++)
+      if (fabs(got[k] - want[k]) > 1e-12 * (1.0 + fabs(want[k]))) {
+        bad++;
+        break;
+      }
+  }
+  return bad;
+}
+
+/* Gives `in`'s points the two linear attributes. */
+static void add_attributes(struct triangulateio *in) {
+  static REAL values[64];
+  int i;
+  for (i = 0; i < in->numberofpoints && i < 32; i++) {
+    values[2 * i] = ATTR0(in->pointlist[2 * i], in->pointlist[2 * i + 1]);
+    values[2 * i + 1] = ATTR1(in->pointlist[2 * i], in->pointlist[2 * i + 1]);
+  }
+  in->numberofpointattributes = 2;
+  in->pointattributelist = values;
+}
 static REAL regions[] = {0.5, 2, 1.0, 0.05, 3, 3.5, 2.0, -1};
 
 static void fill_domain(struct triangulateio *in, int first, int *segments) {
@@ -80,6 +118,10 @@ static void dump(const char *sw, const struct triangulateio *in, const struct tr
   for (i = 0; i < in->numberofpoints; i++)
     printf("P %.17g %.17g %d\n", in->pointlist[2 * i], in->pointlist[2 * i + 1],
            in->pointmarkerlist[i]);
+  for (i = 0; i < in->numberofpoints && in->numberofpointattributes == 2; i++)
+    printf("A %.17g %.17g\n", in->pointattributelist[2 * i], in->pointattributelist[2 * i + 1]);
+  for (i = 0; i < out->numberofpoints && out->numberofpointattributes == 2; i++)
+    printf("a %.17g %.17g\n", out->pointattributelist[2 * i], out->pointattributelist[2 * i + 1]);
   for (i = 0; i < in->numberofsegments; i++)
     printf("G %d %d %d\n", in->segmentlist[2 * i] - first, in->segmentlist[2 * i + 1] - first,
            in->segmentmarkerlist[i]);
@@ -123,6 +165,7 @@ static void mesh_domain(const char *sw, int first) {
   int segments[22];
   char switches[64];
   fill_domain(&in, first, segments);
+  add_attributes(&in);
   clear(&out);
   clear(&vor);
   snprintf(switches, sizeof switches, "%s", sw);
@@ -134,7 +177,8 @@ static void mesh_domain(const char *sw, int first) {
         out.numberofcorners);
   CHECK(out.holelist == in.holelist && out.numberofholes == 1, "%s: holelist not shared", sw);
   CHECK(out.regionlist == in.regionlist && out.numberofregions == 2, "%s: regionlist", sw);
-  CHECK(out.pointattributelist == NULL && out.numberofpointattributes == 0, "%s: attributes", sw);
+  CHECK(bad_attributes(&out) == 0, "%s: %d vertices with attributes not linear", sw,
+        bad_attributes(&out));
   if (out.numberofpoints > 0) dump(sw, &in, &out, first);
   free_out(&out);
 }
@@ -157,7 +201,6 @@ static void expect_failure(const char *sw, struct triangulateio *in, const char 
 static void bad_inputs(void) {
   struct triangulateio in;
   int segments[22];
-  REAL attrs[10] = {0};
   fill_domain(&in, 1, segments);
   expect_failure("prQ", &in, "no triangles"); /* -r without a mesh to refine */
   expect_failure("pwQ", &in, "-w");    /* refused by name */
@@ -168,9 +211,8 @@ static void bad_inputs(void) {
   segments[5] = 0;                     /* below the first number (1) */
   expect_failure("pQ", &in, "first number");
   fill_domain(&in, 1, segments);
-  in.numberofpointattributes = 1;
-  in.pointattributelist = attrs;
-  expect_failure("pQ", &in, "attribute");
+  in.numberofpointattributes = 1; /* attributes announced, none given */
+  expect_failure("pQ", &in, "pointattributelist");
   fill_domain(&in, 1, segments);
   in.numberofpoints = 2;               /* too few points */
   in.numberofsegments = 0;
@@ -229,7 +271,12 @@ static void second_order(struct triangulateio *in) {
   clear(&plain);
   clear(&out);
   triangulate(sw1, in, &plain, NULL);
+  add_attributes(in);
   triangulate(sw2, in, &out, NULL);
+  in->numberofpointattributes = 0;
+  in->pointattributelist = NULL;
+  CHECK(bad_attributes(&out) == 0, "-o2: %d nodes with attributes not linear",
+        bad_attributes(&out));
   CHECK(out.numberofcorners == 6 && out.numberoftriangles == plain.numberoftriangles,
         "-o2: %d corners (%s)", out.numberofcorners, idm_last_error());
   /* Euler: edges = vertices + triangles - 1 for a disc; one midpoint per edge. */
@@ -269,7 +316,10 @@ static void jettison(void) {
   CHECK(with >= 5 && out.pointlist[4] == 5 && out.pointlist[5] == 5, "without -j: %s",
         idm_last_error());
   free_out(&out);
+  add_attributes(&in);
   triangulate(drop, &in, &out, NULL);
+  CHECK(bad_attributes(&out) == 0, "-j: %d vertices with attributes not linear",
+        bad_attributes(&out));
   CHECK(out.numberofpoints == with - 1, "-j: %d points, %d without -j", out.numberofpoints, with);
   for (i = 0; i < out.numberofpoints; i++)
     CHECK(out.pointlist[2 * i] <= 1 && out.pointlist[2 * i + 1] <= 1, "-j kept point %d", i);

@@ -6,7 +6,9 @@ per regional attribute, the same length of boundary per segment marker, and, for
 quality and size bounds, neighbours and edges consistent with the triangles. Not identical
 meshes: idmesh's output is conforming Delaunay, Triangle's constrained. A case with given
 triangles (T lines) is a refinement (-r): Triangle gets the same triangles, attributes and
-area bounds (PyPI triangle's triangle_max_area)."""
+area bounds (PyPI triangle's triangle_max_area). Point attributes (A lines in, a lines out)
+are given to Triangle too; when the input's are linear functions of x and y, both tools must
+output those functions at every vertex (both interpolate linearly at new vertices)."""
 import math
 import re
 import subprocess
@@ -24,7 +26,7 @@ def parse(text):
             continue
         if f[0] == "case":
             cur = {"sw": f[1], "P": [], "G": [], "H": [], "R": [], "T": [], "p": [], "t": [],
-                   "n": [], "s": [], "e": []}
+                   "n": [], "s": [], "e": [], "A": [], "a": []}
         elif f[0] == "end":
             cases.append(cur)
             cur = None
@@ -68,6 +70,25 @@ def close(d1, d2, what, errors):
         errors.append(f"{what}: idmesh {d1} vs Triangle {d2}")
 
 
+def check_linear_attributes(P, A, xy, attrs, who, errors):
+    """When the input attributes A are linear in (x, y) (least squares fit exact to 1e-12),
+    every output vertex's attributes must be those linear functions at it."""
+    X = np.column_stack([np.array(P), np.ones(len(P))])
+    coef, *_ = np.linalg.lstsq(X, np.array(A), rcond=None)
+    scale = 1.0 + np.abs(np.array(A)).max()
+    if np.abs(X @ coef - np.array(A)).max() > 1e-12 * scale:
+        return  # not linear: nothing to compare exactly
+    if len(attrs) != len(xy):
+        errors.append(f"{who}: {len(attrs)} attribute rows for {len(xy)} vertices")
+        return
+    want = np.column_stack([np.array(xy), np.ones(len(xy))]) @ coef
+    err = np.abs(np.array(attrs) - want) / (1.0 + np.abs(want))
+    if err.max() > 1e-12:
+        v = int(err.max(axis=1).argmax())
+        errors.append(f"{who}: vertex {v} at {xy[v]} has attributes {attrs[v]}, "
+                      f"linear interpolation gives {want[v].tolist()}")
+
+
 def check_case(c):
     errors = []
     sw = c["sw"]
@@ -91,6 +112,8 @@ def check_case(c):
         tri_in["triangles"] = np.array([[int(x) for x in r[:3]] for r in c["T"]])
         tri_in["triangle_attributes"] = np.array([[r[3]] for r in c["T"]])
         tri_in["triangle_max_area"] = np.array([r[4] for r in c["T"]])
+    if c["A"]:
+        tri_in["vertex_attributes"] = np.array(c["A"])
     ref_sw = re.sub("[QzuenV]", "", sw)
     ref = triangle.triangulate(tri_in, ref_sw)
     rxy = ref["vertices"].tolist()
@@ -117,6 +140,10 @@ def check_case(c):
               errors)
     close(by_marker(xy, segs, smarks), by_marker(rxy, rsegs, rmarks), "boundary per marker",
           errors)
+    if c["A"]:
+        check_linear_attributes(P, c["A"], xy, c["a"], "idmesh", errors)
+        check_linear_attributes(P, c["A"], rxy, ref["vertex_attributes"].tolist(), "Triangle",
+                                errors)
     # Quality and size bounds asked for.
     q = re.search(r"q([0-9.]*)", sw)
     qmin = (float(q.group(1)) if q.group(1) else 20.0) if q else 0.0

@@ -1850,6 +1850,25 @@ enum idm_status idm_triangle_segments(const struct idm_mesher2d *m,
                                       size_t *count);
 
 /**
+ * Triangle's point attributes on the mesh (`numberofpointattributes`): `attributes` holds
+ * `per_point` values per input point (the points added to the handle, in order); `out` gets
+ * `per_point` values per mesh vertex (`capacity` vertices at least, the number
+ * `idm_mesher2d_vertices` gives): the input values at input vertices, and at Steiner vertices
+ * the values interpolated linearly, along its input segment for a vertex on one, else in the
+ * triangle of the input points' Delaunay triangulation containing it (see
+ * `idmesh::mesh2d::interpolate_point_attributes`). Exact for attributes linear in x and y.
+ *
+ * # Safety
+ * `m` a live handle with a mesh; `attributes` valid for `per_point` reads per input point,
+ * `out` valid for `per_point * capacity` writes.
+ */
+enum idm_status idm_triangle_point_attributes(const struct idm_mesher2d *m,
+                                              const double *attributes,
+                                              size_t per_point,
+                                              double *out,
+                                              size_t capacity);
+
+/**
  * The Voronoi diagram of the mesh as Triangle outputs it with `-v` (the dual of the
  * triangulation, which is Delaunay): Voronoi vertex `t` is the circumcentre of triangle `t`
  * (`points`, 2 per triangle); one Voronoi edge per mesh edge, joining the circumcentres of its

@@ -1,5 +1,7 @@
 //! Floating-point constructions and measures: circumcenters, off-centers, angles, areas.
-//! These never decide topology; every decision is made by [`crate::predicates`].
+//! These never decide topology; every decision is made by [`crate::predicates`]. Also the
+//! location of a point in a triangle or tetrahedron mesh for interpolation, from the
+//! predicates' signs ([`locate_in_simplices`]).
 
 /// Twice the signed area of triangle `abc` (positive when counter-clockwise), in floating point.
 #[inline]
@@ -244,6 +246,59 @@ fn outward_normals(c: [[f64; 3]; 4]) -> [DVec3; 4] {
         let m = (f[1] - f[0]).cross(f[2] - f[0]);
         let m = if m.dot(p[i] - f[0]) > 0.0 { -m } else { m };
         m.normalize_or_zero()
+    })
+}
+
+/// The simplex of a mesh containing a point, and the point's barycentric weights, for
+/// interpolating values given at the vertices (2D triangles, `N = 3`; 3D tetrahedra, `N = 4`).
+/// `sub(t)` gives, for simplex `t`, the signed measures (from the exact predicates: exact
+/// signs) of the simplices the point makes with each facet, facet `i` being opposite corner
+/// `i`: all non-negative exactly when the point is in the closed simplex. `neighbors[t][i]` is
+/// the simplex across facet `i`, or [`crate::NONE`]. A visibility walk from `*hint` (updated),
+/// then, if the walk leaves the mesh or runs out of steps (it can cycle only in non-Delaunay
+/// meshes), a scan. `None` when the point is in no simplex.
+pub fn locate_in_simplices<const N: usize>(
+    neighbors: &[[u32; N]],
+    sub: impl Fn(usize) -> [f64; N],
+    hint: &mut u32,
+) -> Option<(usize, [f64; N])> {
+    let nt = neighbors.len();
+    if nt == 0 {
+        return None;
+    }
+    let weights = |s: [f64; N]| {
+        let total: f64 = s.iter().sum();
+        (total > 0.0).then(|| s.map(|x| x / total))
+    };
+    let mut t = (*hint as usize).min(nt - 1);
+    for _ in 0..nt.min(4096) + 8 {
+        let s = sub(t);
+        match (0..N).find(|&i| s[i] < 0.0) {
+            None => {
+                if let Some(w) = weights(s) {
+                    *hint = t as u32;
+                    return Some((t, w));
+                }
+                break;
+            }
+            Some(i) => {
+                let n = neighbors[t][i];
+                if n == crate::NONE {
+                    break;
+                }
+                t = n as usize;
+            }
+        }
+    }
+    (0..nt).find_map(|t| {
+        let s = sub(t);
+        if s.iter().all(|&x| x >= 0.0) {
+            let w = weights(s)?;
+            *hint = t as u32;
+            Some((t, w))
+        } else {
+            None
+        }
     })
 }
 

@@ -806,3 +806,44 @@ fn double_y_keeps_every_segment_whole() {
         assert_eq!(split, !sw.contains("YY"), "{sw}");
     }
 }
+
+#[test]
+fn point_attributes_are_written_interpolated_linearly() {
+    // A square with a notch, two attributes per point, linear in x and y: every vertex of
+    // the output, Steiner points included, must carry the same linear functions.
+    let f = |x: f64, y: f64| [3.0 * x - 2.0 * y + 0.5, -x + 4.0 * y];
+    let pts = [[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [1.0, 1.0], [0.0, 2.0]];
+    let mut poly = format!("{} 2 2 0\n", pts.len());
+    for (i, p) in pts.iter().enumerate() {
+        let a = f(p[0], p[1]);
+        poly += &format!("{} {} {} {} {}\n", i + 1, p[0], p[1], a[0], a[1]);
+    }
+    poly += "5 1\n1 1 2 3\n2 2 3 3\n3 3 4 3\n4 4 5 3\n5 5 1 3\n0\n";
+    let d = TempDir::new("pattr");
+    d.write("n.poly", &poly);
+    ok(&idmesh(&d.0, &["triangle", "-pq30a0.01Q", "n.poly"]));
+    let text = d.read("n.1.node");
+    assert_eq!(
+        header(&text)[1..3],
+        ["2", "2"],
+        "dimension and attribute count"
+    );
+    let node = parse_node(&text, "n.1.node").unwrap();
+    assert_eq!(node.num_point_attributes, 2);
+    let n = node.pslg.points.len();
+    assert!(n > 50, "refined: {n} vertices");
+    for (v, p) in node.pslg.points.iter().enumerate() {
+        let want = f(p[0], p[1]);
+        for (a, w) in want.iter().enumerate() {
+            let got = node.point_attributes[2 * v + a];
+            assert!(
+                (got - w).abs() <= 1e-12 * (1.0 + w.abs()),
+                "vertex {v} at {p:?}: attribute {a} is {got}, want {w}"
+            );
+        }
+    }
+    // Without attributes the header says 0.
+    d.write("s.poly", SQUARE);
+    ok(&idmesh(&d.0, &["triangle", "-pa0.1Q", "s.poly"]));
+    assert_eq!(header(&d.read("s.1.node"))[2], "0");
+}

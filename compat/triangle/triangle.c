@@ -17,6 +17,7 @@
  * caller passed it (apart from the counts, which are zeroed). */
 struct result {
   double *points;
+  double *point_attributes; /* num_attributes per point, or NULL */
   int *point_markers;
   int *triangles;
   double *triangle_attributes;
@@ -28,12 +29,14 @@ struct result {
   double *voronoi_points;
   int *voronoi_edges;
   double *voronoi_norms;
+  int num_attributes;
   int num_points, num_triangles, num_segments, num_edges, num_voronoi_points,
       num_voronoi_edges;
 };
 
 static void free_result(struct result *r) {
   free(r->points);
+  free(r->point_attributes);
   free(r->point_markers);
   free(r->triangles);
   free(r->triangle_attributes);
@@ -87,10 +90,10 @@ static idm_status add_input(idm_mesher2d *m, const idm_triangle_switches *sw,
   idm_status st;
   size_t i, n;
   if (in->numberofpoints < 0) return fail(IDM_ERR_INVALID_ARGUMENT, "in->numberofpoints is negative");
-  if (in->numberofpointattributes != 0)
-    return fail(IDM_ERR_UNSUPPORTED,
-                "in->numberofpointattributes is not 0: idmesh does not interpolate point "
-                "attributes at new vertices");
+  if (in->numberofpointattributes < 0)
+    return fail(IDM_ERR_INVALID_ARGUMENT, "in->numberofpointattributes is negative");
+  if (in->numberofpointattributes > 0 && in->numberofpoints > 0 && in->pointattributelist == NULL)
+    return fail(IDM_ERR_NULL_POINTER, "in->pointattributelist is NULL");
   st = idm_mesher2d_add_points(m, in->pointlist, (size_t)in->numberofpoints,
                                in->pointmarkerlist);
   if (st != IDM_OK || !sw->poly) return st;
@@ -227,7 +230,7 @@ static idm_status read_pairs(idm_status (*get)(const idm_mesher2d *, uint32_t *,
 
 /* Reads the mesh from `m` into `r` as Triangle would output it. */
 static idm_status read_mesh(const idm_mesher2d *m, const idm_triangle_switches *sw, int first,
-                            struct result *r) {
+                            const struct triangulateio *in, struct result *r) {
   const double *xy = NULL, *attr = NULL;
   const int32_t *vm = NULL;
   const uint32_t *tri = NULL, *nbr = NULL;
@@ -273,6 +276,27 @@ static idm_status read_mesh(const idm_mesher2d *m, const idm_triangle_switches *
   }
   if (nv > 0) memcpy(r->points, xy, 2 * nv * sizeof *xy);
   for (i = 0; i < nv; i++) r->point_markers[i] = vm[i];
+  if (in->numberofpointattributes > 0) {
+    /* Kept at input points, interpolated linearly at Steiner points (by the library), and
+     * at -o2 nodes the mean of the edge's ends, as Triangle does. */
+    size_t na = (size_t)in->numberofpointattributes, k;
+    r->num_attributes = in->numberofpointattributes;
+    r->point_attributes = (double *)alloc((nv + nn) * na, sizeof *r->point_attributes);
+    if (r->point_attributes == NULL)
+      return fail(IDM_ERR_INVALID_ARGUMENT, "out of memory for the point attributes");
+    st = idm_triangle_point_attributes(m, in->pointattributelist, na, r->point_attributes, nv);
+    if (st != IDM_OK) return st;
+    for (i = 0; sw->second_order && i < nt; i++) {
+      for (k = 0; k < 3; k++) {
+        size_t node = (size_t)(r->triangles[6 * i + 3 + k] - first), a;
+        size_t p = (size_t)(r->triangles[6 * i + (k + 1) % 3] - first);
+        size_t q = (size_t)(r->triangles[6 * i + (k + 2) % 3] - first);
+        for (a = 0; a < na; a++)
+          r->point_attributes[node * na + a] =
+              0.5 * (r->point_attributes[p * na + a] + r->point_attributes[q * na + a]);
+      }
+    }
+  }
   if (sw->region_attributes) {
     if ((st = idm_mesher2d_triangle_attributes(m, &attr, &na)) != IDM_OK) return st;
     r->triangle_attributes = (double *)alloc(nt, sizeof *r->triangle_attributes);
@@ -329,6 +353,10 @@ static idm_status jettison(struct result *r, int corners, int first) {
     r->points[2 * kept] = r->points[2 * i];
     r->points[2 * kept + 1] = r->points[2 * i + 1];
     r->point_markers[kept] = r->point_markers[i];
+    if (r->point_attributes != NULL)
+      memmove(r->point_attributes + (size_t)kept * (size_t)r->num_attributes,
+              r->point_attributes + (size_t)i * (size_t)r->num_attributes,
+              (size_t)r->num_attributes * sizeof *r->point_attributes);
     kept++;
   }
   for (i = 0; i < corners * r->num_triangles; i++)
@@ -358,9 +386,11 @@ static idm_status jettison(struct result *r, int corners, int first) {
 static void commit(const idm_triangle_switches *sw, struct triangulateio *in,
                    struct triangulateio *out, struct triangulateio *vorout, struct result *r) {
   out->numberofpoints = r->num_points;
-  out->numberofpointattributes = 0;
+  out->numberofpointattributes = r->num_attributes;
   if (!sw->no_node) {
     GIVE(pointlist, r->points, 2 * r->num_points);
+    if (r->num_attributes > 0)
+      GIVE(pointattributelist, r->point_attributes, r->num_attributes * r->num_points);
     if (!sw->no_boundary_markers) GIVE(pointmarkerlist, r->point_markers, r->num_points);
   }
   out->numberoftriangles = r->num_triangles;
@@ -435,7 +465,7 @@ static idm_status run(char *triswitches, struct triangulateio *in, struct triang
     }
   }
   if (st == IDM_OK && sw->check) st = idm_mesher2d_validate(m);
-  if (st == IDM_OK) st = read_mesh(m, sw, first, &r);
+  if (st == IDM_OK) st = read_mesh(m, sw, first, in, &r);
   if (st == IDM_OK && sw->jettison) st = jettison(&r, sw->second_order ? 6 : 3, first);
   if (st == IDM_OK) {
     commit(sw, in, out, vorout, &r);

@@ -15,8 +15,11 @@
  *     i F l s X (algorithm and arithmetic choices of Triangle) are accepted and do nothing;
  *     g and I, which only affect Triangle's files, are accepted and do nothing (as in
  *     Triangle's library).
- *   - Point attributes (numberofpointattributes > 0) are refused: idmesh does not interpolate
- *     them at new vertices. Duplicate input points are an error (Triangle drops them).
+ *   - Point attributes (numberofpointattributes > 0) are copied at input points and
+ *     interpolated linearly at Steiner points (along the input segment for a point on one,
+ *     else in the input points' Delaunay triangle containing it; o2 nodes: the mean of the
+ *     edge's ends): equal to Triangle's for attributes linear in x and y, otherwise another
+ *     linear interpolation. Duplicate input points are an error (Triangle drops them).
  *   - REAL must be double (a compile-time check fails otherwise); ANSI_DECLARATORS and VOID
  *     may be defined or not: the declarations below are always ANSI prototypes.
  */

@@ -14,8 +14,8 @@ use std::ffi::{c_char, CStr};
 
 use crate::ffi::{
     change, check_out, guard, idm_mesher2d, idm_mesher2d_neighbors, idm_mesher2d_segments,
-    idm_mesher2d_triangles, idm_mesher2d_vertices, idm_options2d, idm_status, input_slice,
-    optional_slice, Failure,
+    idm_mesher2d_triangles, idm_mesher2d_vertices, idm_options2d, idm_status, input_slice, mesh_of,
+    optional_slice, scaled, Failure,
 };
 use crate::geometry::circumcenter;
 use crate::mesh2d::{TriMesh, NONE};
@@ -381,6 +381,52 @@ pub unsafe extern "C" fn idm_triangle_segments(
 ) -> idm_status {
     // SAFETY: the caller's contract, forwarded.
     unsafe { pairs(m, output_segments, ab, markers, capacity, count) }
+}
+
+/// Triangle's point attributes on the mesh (`numberofpointattributes`): `attributes` holds
+/// `per_point` values per input point (the points added to the handle, in order); `out` gets
+/// `per_point` values per mesh vertex (`capacity` vertices at least, the number
+/// `idm_mesher2d_vertices` gives): the input values at input vertices, and at Steiner vertices
+/// the values interpolated linearly, along its input segment for a vertex on one, else in the
+/// triangle of the input points' Delaunay triangulation containing it (see
+/// `idmesh::mesh2d::interpolate_point_attributes`). Exact for attributes linear in x and y.
+///
+/// # Safety
+/// `m` a live handle with a mesh; `attributes` valid for `per_point` reads per input point,
+/// `out` valid for `per_point * capacity` writes.
+#[no_mangle]
+pub unsafe extern "C" fn idm_triangle_point_attributes(
+    m: *const idm_mesher2d,
+    attributes: *const f64,
+    per_point: usize,
+    out: *mut f64,
+    capacity: usize,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let mesh = unsafe { mesh_of(m) }?;
+        let ni = mesh.num_input_vertices;
+        let values: &[f64] = unsafe {
+            input_slice(
+                attributes,
+                scaled(ni, per_point, "per_point")?,
+                "attributes",
+            )
+        }?;
+        let nv = mesh.vertices.len();
+        if capacity < nv {
+            return Err(Failure::invalid(format!(
+                "capacity {capacity} is less than the {nv} vertices"
+            )));
+        }
+        let all = crate::mesh2d::interpolate_point_attributes(mesh, per_point, values)?;
+        if !all.is_empty() {
+            check_out(out, "out")?;
+            // SAFETY: `out` holds `per_point * capacity >= all.len()` values.
+            unsafe { std::ptr::copy_nonoverlapping(all.as_ptr(), out, all.len()) };
+        }
+        Ok(())
+    })
 }
 
 /// The Voronoi diagram of the mesh as Triangle outputs it with `-v` (the dual of the

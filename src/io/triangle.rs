@@ -6,7 +6,7 @@
 //! that output can be numbered the same way. [`parse_ele`] reads a mesh's triangles back and [`parse_area`] its
 //! per-triangle area bounds (both for `-r`).
 //!
-//! Writing: [`write_node`], [`write_ele`], [`write_poly`], [`write_edge`] and [`write_neigh`]
+//! Writing: [`write_node`] (with point attributes: [`write_node_attributes`]), [`write_ele`], [`write_poly`], [`write_edge`] and [`write_neigh`]
 //! write a [`TriMesh`](crate::TriMesh) in Triangle's output layouts; [`write_pslg_poly`] writes
 //! a PSLG back as a self-contained `.poly` file.
 //!
@@ -23,6 +23,6 @@ pub use super::triangle_read::{
     EleData, TriangleInput,
 };
 pub use super::triangle_write::{
-    write_edge, write_ele, write_neigh, write_node, write_poly, write_poly_segments,
-    write_pslg_poly,
+    write_edge, write_ele, write_neigh, write_node, write_node_attributes, write_poly,
+    write_poly_segments, write_pslg_poly,
 };

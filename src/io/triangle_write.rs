@@ -17,19 +17,39 @@ fn invalid(message: String) -> io::Error {
 
 /// Writes the `.node` file of `mesh`: header `n 2 0 1`, then `i x y marker` per vertex.
 pub fn write_node<W: Write>(out: W, mesh: &TriMesh, base: u32) -> io::Result<()> {
+    write_node_attributes(out, mesh, base, 0, &[])
+}
+
+/// Writes the `.node` file of `mesh` with `per_point` attributes per vertex (`attributes`,
+/// vertex by vertex, as [`crate::mesh2d::interpolate_point_attributes`] gives them): header
+/// `n 2 per_point 1`, then `i x y attributes... marker` per vertex.
+pub fn write_node_attributes<W: Write>(
+    out: W,
+    mesh: &TriMesh,
+    base: u32,
+    per_point: usize,
+    attributes: &[f64],
+) -> io::Result<()> {
+    if attributes.len() != per_point * mesh.vertices.len() {
+        return Err(invalid(format!(
+            "{} point attribute values for {} vertices with {per_point} each",
+            attributes.len(),
+            mesh.vertices.len()
+        )));
+    }
     let mut w = Out::new(out);
     w.uint(mesh.vertices.len() as u64)
         .uint(2)
-        .uint(0)
+        .uint(per_point as u64)
         .uint(1)
         .end_line()?;
     for (i, p) in mesh.vertices.iter().enumerate() {
         let marker = mesh.vertex_markers.get(i).copied().unwrap_or(0);
-        w.uint(i as u64 + base as u64)
-            .real(p[0])
-            .real(p[1])
-            .int(marker as i64)
-            .end_line()?;
+        w.uint(i as u64 + base as u64).real(p[0]).real(p[1]);
+        for &a in &attributes[i * per_point..(i + 1) * per_point] {
+            w.real(a);
+        }
+        w.int(marker as i64).end_line()?;
     }
     w.finish()
 }

@@ -15,8 +15,10 @@
 //! ghost vertex at infinity) is generic over the exact predicates of a `geometry::Geometry`
 //! (paper §2). The mesher's pipeline (`build.rs` → `refine.rs` → `output.rs`) depends on the
 //! kernel, never the other way round; the 3D input checks triangulate facets with the same
-//! kernel (re-exported as `mesh2d::kernel`).
+//! kernel (re-exported as `mesh2d::kernel`). `attributes.rs` carries input point attributes
+//! to the output, interpolated at Steiner vertices (Triangle's point attributes).
 
+mod attributes;
 mod build;
 mod flip;
 mod geometry;
@@ -43,6 +45,7 @@ pub(crate) mod kernel {
 use std::fmt;
 use std::sync::Arc;
 
+pub use attributes::interpolate_point_attributes;
 pub use output::TriMesh;
 
 use crate::error::Error;

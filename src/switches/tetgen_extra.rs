@@ -583,46 +583,7 @@ impl Background {
     /// The tetrahedron containing `p` and its barycentric weights: a walk from `*hint`
     /// (updated), then, if the walk leaves the mesh or runs out of steps, a scan.
     pub fn locate(&self, p: [f64; 3], hint: &mut u32) -> Option<(usize, [f64; 4])> {
-        let nt = self.tets.len();
-        if nt == 0 {
-            return None;
-        }
-        let weights = |s: [f64; 4]| {
-            let total: f64 = s.iter().sum();
-            (total > 0.0).then(|| s.map(|x| x / total))
-        };
-        let mut t = (*hint as usize).min(nt - 1);
-        // The walk can cycle only in non-Delaunay meshes; the budget bounds it, the scan
-        // answers then.
-        for _ in 0..nt.min(4096) + 8 {
-            let s = self.sub_volumes(t, p);
-            match (0..4).find(|&i| s[i] < 0.0) {
-                None => {
-                    if let Some(w) = weights(s) {
-                        *hint = t as u32;
-                        return Some((t, w));
-                    }
-                    break;
-                }
-                Some(i) => {
-                    let n = self.neighbors[t][i];
-                    if n == NONE {
-                        break;
-                    }
-                    t = n as usize;
-                }
-            }
-        }
-        (0..nt).find_map(|t| {
-            let s = self.sub_volumes(t, p);
-            if s.iter().all(|&x| x >= 0.0) {
-                let w = weights(s)?;
-                *hint = t as u32;
-                Some((t, w))
-            } else {
-                None
-            }
-        })
+        crate::geometry::locate_in_simplices(&self.neighbors, |t| self.sub_volumes(t, p), hint)
     }
 
     /// Writes the values interpolated at `p` into `out` (`per_point` of them); `false` when

@@ -6,9 +6,10 @@ use std::io::{self, Write};
 use std::time::{Duration, Instant};
 
 use idmesh::io::triangle::{
-    read_area, read_ele, read_node, read_poly, write_edge, write_ele, write_neigh, write_node,
-    write_poly, write_poly_segments, TriangleInput,
+    read_area, read_ele, read_node, read_poly, write_edge, write_ele, write_neigh,
+    write_node_attributes, write_poly, write_poly_segments, TriangleInput,
 };
+use idmesh::mesh2d::interpolate_point_attributes;
 use idmesh::switches::triangle::{
     output_segments, parse_command_line, refine_input, GivenMesh, Parsed, Switches,
 };
@@ -31,7 +32,8 @@ Usage: idmesh triangle [-SWITCHES] FILE
 FILE is FILE.node (a point set) or, with -p or a .poly extension, FILE.poly (a planar
 straight-line graph). Outputs are FILE.1.node and FILE.1.ele (FILE.2.* for FILE.1, ...),
 FILE.1.poly with -p (or -c), FILE.1.edge with -e, FILE.1.neigh with -n. Numbering follows the
-input (0 or 1), or starts at 0 with -z.
+input (0 or 1), or starts at 0 with -z. Point attributes of the input are written, kept at
+input points and interpolated linearly at Steiner points.
 
 Switches are letters that may be grouped, e.g. -pq30a0.01V:
   -p          read FILE.poly (segments, holes, regional attributes and area bounds)
@@ -230,7 +232,14 @@ fn write_outputs(
     base: u32,
 ) -> Result<(), String> {
     if !sw.no_node {
-        write_file(sw, &files.output("node"), |f| write_node(f, mesh, base))?;
+        // The input's point attributes, kept at input points and interpolated linearly at
+        // Steiner points, as Triangle writes them.
+        let na = input.num_point_attributes;
+        let attributes = interpolate_point_attributes(mesh, na, &input.point_attributes)
+            .map_err(|e| format!("{}: {e}", files.input))?;
+        write_file(sw, &files.output("node"), |f| {
+            write_node_attributes(f, mesh, base, na, &attributes)
+        })?;
     }
     if !sw.no_ele {
         write_file(sw, &files.output("ele"), |f| write_ele(f, mesh, base))?;

@@ -652,3 +652,30 @@ fn an_untriangulable_face_is_named_with_its_line() {
         "{line}"
     );
 }
+
+#[test]
+fn a_vtk_mesh_written_with_k_reads_back_as_its_surface_and_meshes() {
+    // -k writes the tets and the boundary triangles with their markers; read back, the
+    // triangles are the surface (with those markers) of a mesh of the same volume.
+    let (d, m) = mesh_example("3d_cube.poly", "-pq1.414kQ", 1);
+    assert!(d.exists("3d_cube.1.vtk"));
+    let text = d.read("3d_cube.1.vtk");
+    d.write("again.vtk", &text);
+    ok(&idmesh(&d.0, &["-pqQ", "again.vtk"]));
+    let again = read_mesh(&d, "again.1", 0);
+    again.assert_oriented();
+    assert!(close(again.volume(), m.volume()), "{}", again.volume());
+    let face = parse_face(&d.read("again.1.face"), "face", 0, again.points.len()).unwrap();
+    let mut seen: Vec<i32> = face.markers.clone();
+    seen.sort_unstable();
+    seen.dedup();
+    assert_eq!(
+        seen,
+        [1, 2, 3, 4, 5, 6],
+        "the cube's side markers come back"
+    );
+    // A bad file names the file and the line.
+    d.write("bad.vtk", &text.replacen("POINTS", "POINTS x", 1));
+    let line = fails(&idmesh(&d.0, &["-pQ", "bad.vtk"]));
+    assert!(line.contains("bad.vtk:5"), "{line}");
+}

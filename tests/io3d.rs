@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 use idmesh::input3d::check_plc;
 use idmesh::io::tetgen::{
     parse_edge, parse_ele, parse_face, parse_medit, parse_neigh, parse_node, parse_off, parse_ply,
-    parse_poly, parse_smesh, parse_stl, read_input, read_poly, write_all_faces, write_edge,
-    write_ele, write_face, write_neigh, write_node, write_plc_poly, TetgenInput,
+    parse_poly, parse_smesh, parse_stl, parse_vtk, read_input, read_poly, write_all_faces,
+    write_edge, write_ele, write_face, write_neigh, write_node, write_plc_poly, TetgenInput,
 };
 use idmesh::io::ParseError;
 use idmesh::{Facet, Plc, Region3, TetMesh, NONE};
@@ -252,6 +252,108 @@ fn off_variants_comments_colours_and_numbering() {
     let o = parse_off(one, "o.off").unwrap();
     assert_eq!(o.base, 1);
     assert_eq!(o.plc.facets, inp.plc.facets);
+}
+
+/// The unit tetrahedron's surface as legacy VTK POLYDATA: a title, comments, coordinates
+/// running over line breaks, a line cell (skipped) and the marker cell data.
+const TET_VTK: &str = "# vtk DataFile Version 2.0
+a tetrahedron
+ASCII
+DATASET POLYDATA
+POINTS 4 float
+0 0 0 1 0 0
+0 1 0
+0 0 1
+LINES 1 3
+2 0 1
+POLYGONS 4 16
+3 0 2 1
+3 0 1 3
+3 1 2 3
+3 2 0 3
+CELL_DATA 5
+SCALARS marker int 1
+LOOKUP_TABLE default
+0 4 5 6 7
+";
+
+#[test]
+fn vtk_polydata_and_unstructured_grids_read_as_surfaces() {
+    let inp = parse_vtk(TET_VTK, "t.vtk").unwrap();
+    assert_eq!(inp.base, 0);
+    assert_eq!(inp.plc.points[3], [0.0, 0.0, 1.0]);
+    assert_eq!(inp.plc.facets.len(), 4, "the line cell is skipped");
+    assert_eq!(inp.plc.facets[2].polygons, vec![vec![1, 2, 3]]);
+    let markers: Vec<i32> = inp.plc.facets.iter().map(|f| f.marker).collect();
+    assert_eq!(markers, [4, 5, 6, 7], "the line's marker is skipped");
+    check_plc(&inp.plc).unwrap();
+    // Without cell data the markers are 0; an empty title line is allowed.
+    let plain = TET_VTK
+        .split("CELL_DATA")
+        .next()
+        .unwrap()
+        .replace("a tetrahedron", "");
+    let p = parse_vtk(&plain, "p.vtk").unwrap();
+    assert!(p.plc.facets.iter().all(|f| f.marker == 0));
+    assert_eq!(p.plc.points, inp.plc.points);
+    // A tetrahedral mesh as idmesh's -k writes it reads back as its boundary triangles.
+    let m = two_tets();
+    let vtk = text(|b| {
+        idmesh::io::exchange::write(
+            b,
+            idmesh::io::exchange::MeshView::from(&m),
+            idmesh::io::exchange::Format::Vtk,
+        )
+    });
+    let back = parse_vtk(&vtk, "m.vtk").unwrap();
+    same_bits(&back.plc.points, &m.vertices);
+    let faces: Vec<Vec<u32>> = back
+        .plc
+        .facets
+        .iter()
+        .map(|f| f.polygons[0].clone())
+        .collect();
+    let want: Vec<Vec<u32>> = m.faces.iter().map(|f| f.to_vec()).collect();
+    assert_eq!(faces, want);
+    let markers: Vec<i32> = back.plc.facets.iter().map(|f| f.marker).collect();
+    assert_eq!(markers, m.face_markers);
+    // Quads and pixels (raster order) in an unstructured grid.
+    let grid = "# vtk DataFile Version 3.0\nsquare\nASCII\nDATASET UNSTRUCTURED_GRID\n\
+                POINTS 4 double\n0 0 0\n1 0 0\n0 1 0\n1 1 0\nCELLS 2 10\n4 0 1 3 2\n4 0 1 2 3\n\
+                CELL_TYPES 2\n9\n8\n";
+    let g = parse_vtk(grid, "g.vtk").unwrap();
+    assert_eq!(g.plc.facets[0].polygons, vec![vec![0, 1, 3, 2]]);
+    assert_eq!(
+        g.plc.facets[1].polygons,
+        vec![vec![0, 1, 3, 2]],
+        "pixel reordered"
+    );
+}
+
+#[test]
+fn vtk_errors_name_the_line() {
+    let err = |t: &str| parse_vtk(t, "e.vtk").unwrap_err();
+    let e = err(&TET_VTK.replace("3 1 2 3", "3 1 2 9"));
+    assert_eq!(e.line, 14);
+    assert!(e.message.contains("corner 9 is out of range"), "{e}");
+    let e = err(&TET_VTK.replace("0 1 0\n0 0 1", "0 1 0\n0 x 1"));
+    assert_eq!(e.line, 8);
+    assert!(e.message.contains("bad number 'x'"), "{e}");
+    let e = err(&TET_VTK.replace("ASCII", "BINARY"));
+    assert_eq!(e.line, 3);
+    assert!(e.message.contains("binary"), "{e}");
+    let e = err(&TET_VTK.replace("POLYDATA", "STRUCTURED_POINTS"));
+    assert!(e.message.contains("STRUCTURED_POINTS"), "{e}");
+    let e = err(&TET_VTK.replace("CELL_DATA 5", "CELL_DATA 4"));
+    assert_eq!(e.line, 16);
+    let e = err(TET_VTK.split("POLYGONS").next().unwrap());
+    assert!(e.message.contains("no surface cells"), "{e}");
+    let grid = "x\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 double\n0 0 0 1 0 0 0 1 0\n\
+                CELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n22\n";
+    let e = err(grid);
+    assert_eq!(e.line, 9);
+    assert!(e.message.contains("type 22"), "{e}");
+    assert!(mangle(TET_VTK, |t| parse_vtk(t, "m.vtk")) > 100);
 }
 
 /// A binary STL of the given triangles (f32 corners).
@@ -635,7 +737,7 @@ fn surface_errors_name_the_line() {
     let e = parse_medit("Vertices 1\n0 0 0 0\nTriangles 1\n1 2 3 0\n", "t.mesh").unwrap_err();
     assert_eq!(e.line, 4);
     assert!(e.message.contains("out of range"), "{e}");
-    let e = read_input(Path::new("/nonexistent-idmesh/x.vtk")).unwrap_err();
+    let e = read_input(Path::new("/nonexistent-idmesh/x.obj")).unwrap_err();
     assert!(e.message.contains("unknown file type"), "{e}");
 }
 

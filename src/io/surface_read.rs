@@ -1,7 +1,8 @@
 //! Readers for surface meshes that TetGen accepts as PLCs: Geomview `.off`, `.stl` (ASCII and
-//! binary), ASCII `.ply` and Medit `.mesh`. Each polygon becomes a one-polygon facet.
+//! binary), ASCII `.ply`, Medit `.mesh` and legacy ASCII VTK `.vtk`. Each polygon becomes a
+//! one-polygon facet.
 //!
-//! Numbering, as in TetGen: `.off`, `.ply` and `.mesh` indices are 0-based when the smallest
+//! Numbering, as in TetGen: `.off`, `.ply`, `.vtk` and `.mesh` indices are 0-based when the smallest
 //! index in the file is 0 and 1-based when it is 1 (`.off` and `.ply` default to 0, `.mesh`
 //! to 1); STL has no indices, its output is numbered from 1 as TetGen does. STL corners are
 //! merged into vertices by exact coordinate equality (-0.0 equals 0.0), in order of first
@@ -11,7 +12,7 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use super::error::ParseError;
-use super::lines::{capacity, read_text, Record, Records};
+use super::lines::{capacity, parse_f64, parse_int, read_text, Record, Records};
 use super::tetgen_input::TetgenInput;
 use crate::input3d::{Facet, Plc};
 use crate::mesh3d::NONE;
@@ -490,6 +491,274 @@ pub fn parse_medit(text: &str, file: &str) -> Result<TetgenInput, ParseError> {
     polys.into_input(file, points, 1)
 }
 
+/// The fields of a file as one stream across lines (legacy VTK lets numbers run on over line
+/// breaks); errors point at the line of the last field read.
+struct Fields<'a> {
+    recs: Records<'a>,
+    rec: Record<'a>,
+    at: usize,
+}
+
+impl<'a> Fields<'a> {
+    fn new(text: &'a str, file: &'a str) -> Self {
+        let recs = Records::new(text, file);
+        let rec = recs.record();
+        Fields { recs, rec, at: 0 }
+    }
+
+    /// The next field, or `None` at the end of the file.
+    fn next(&mut self) -> Option<&'a str> {
+        while self.at >= self.rec.fields.len() {
+            if !self.recs.next_into(&mut self.rec) {
+                return None;
+            }
+            self.at = 0;
+        }
+        self.at += 1;
+        Some(self.rec.fields[self.at - 1])
+    }
+
+    /// The rest of the current line (fields not read yet), consumed.
+    fn rest_of_line(&mut self) -> Vec<&'a str> {
+        let rest = self.rec.fields[self.at.min(self.rec.fields.len())..].to_vec();
+        self.at = self.rec.fields.len();
+        rest
+    }
+
+    fn error(&self, message: impl Into<String>) -> ParseError {
+        self.rec.error(message)
+    }
+
+    fn require(&mut self, what: &str) -> Result<&'a str, ParseError> {
+        self.next().ok_or_else(|| self.recs.eof(what))
+    }
+
+    fn int(&mut self, what: &str) -> Result<i64, ParseError> {
+        let s = self.require(what)?;
+        parse_int(s).ok_or_else(|| self.error(format!("bad integer '{s}' for {what}")))
+    }
+
+    fn count(&mut self, what: &str) -> Result<usize, ParseError> {
+        let v = self.int(what)?;
+        usize::try_from(v).map_err(|_| self.error(format!("{what} is negative ({v})")))
+    }
+
+    fn f64(&mut self, what: &str) -> Result<f64, ParseError> {
+        let s = self.require(what)?;
+        parse_f64(s).ok_or_else(|| self.error(format!("bad number '{s}' for {what}")))
+    }
+}
+
+/// Legacy VTK cell types read as facets: triangle, polygon, pixel (corners in raster order) and
+/// quad.
+const VTK_TRIANGLE: i64 = 5;
+const VTK_POLYGON: i64 = 7;
+const VTK_PIXEL: i64 = 8;
+const VTK_QUAD: i64 = 9;
+
+/// Parses a legacy ASCII VTK file (`.vtk`) as a surface, as TetGen's `load_vtk` does: `POINTS`,
+/// then either `POLYGONS` (a `POLYDATA` dataset) or `CELLS` with `CELL_TYPES` (an
+/// `UNSTRUCTURED_GRID`), whose triangles, quads, pixels and polygons become one-polygon
+/// facets. Vertices, lines and 3D cells are skipped, so a tetrahedral mesh written with
+/// idmesh's `-k` reads back as its boundary triangles; integer cell data named `marker`
+/// (what `-k` writes) gives the facet markers. Numbers may run over line breaks; indices are
+/// 0-based (1-based when the smallest is 1, as in TetGen). Binary files and the `OFFSETS` /
+/// `CONNECTIVITY` cell layout of VTK 5.1 are refused by name.
+pub fn parse_vtk(text: &str, file: &str) -> Result<TetgenInput, ParseError> {
+    let mut f = Fields::new(text, file);
+    // Header: the `# vtk DataFile` line is a comment to the tokenizer; then the title line
+    // (any text, possibly blank), then ASCII or BINARY.
+    let first = f.require("the title and 'ASCII' lines")?;
+    let mode = if first.eq_ignore_ascii_case("ascii") || first.eq_ignore_ascii_case("binary") {
+        first
+    } else {
+        f.rest_of_line();
+        f.require("'ASCII'")?
+    };
+    if !mode.eq_ignore_ascii_case("ascii") {
+        return Err(f.error(format!(
+            "expected 'ASCII' after the title line, got '{mode}' (binary VTK is not supported)"
+        )));
+    }
+    let mut points: Option<Vec<[f64; 3]>> = None;
+    let mut polys = RawPolygons::new();
+    // The index of each facet among the CELLS, or among the POLYGONS (for `marker` cell
+    // data), and the cells before the polygons in VTK's cell order (vertices, lines,
+    // polygons, strips).
+    let mut cell_of_facet: Vec<usize> = Vec::new();
+    let mut cells_before_polygons = 0usize;
+    let mut num_cells = 0usize;
+    let mut unstructured = false;
+    let mut cell_data = false;
+    while let Some(word) = f.next() {
+        match word.to_ascii_uppercase().as_str() {
+            "DATASET" => {
+                let kind = f.require("the dataset type")?;
+                match kind.to_ascii_uppercase().as_str() {
+                    "POLYDATA" => {}
+                    "UNSTRUCTURED_GRID" => unstructured = true,
+                    _ => {
+                        return Err(f.error(format!(
+                            "dataset '{kind}': only POLYDATA and UNSTRUCTURED_GRID are read"
+                        )))
+                    }
+                }
+            }
+            "POINTS" => {
+                let n = f.count("the point count")?;
+                f.require("the point data type")?;
+                too_many(&f.rec, n)?;
+                let mut p = Vec::with_capacity(capacity(n, text));
+                for k in 0..n {
+                    let what = |c: &str| format!("{c} coordinate of point {k}");
+                    p.push([f.f64(&what("x"))?, f.f64(&what("y"))?, f.f64(&what("z"))?]);
+                }
+                points = Some(p);
+            }
+            kw @ ("VERTICES" | "LINES" | "POLYGONS" | "TRIANGLE_STRIPS" | "CELLS") => {
+                let n = f.count("the cell count")?;
+                f.count("the list size")?;
+                if kw == "TRIANGLE_STRIPS" && n > 0 {
+                    return Err(f.error("TRIANGLE_STRIPS are not supported"));
+                }
+                let mut types_from = Vec::new();
+                for k in 0..n {
+                    let m = f.count("the corner count")?;
+                    let line = f.rec.line;
+                    let mut corners = Vec::with_capacity(m);
+                    for _ in 0..m {
+                        let s = f.require("a corner")?;
+                        if s.eq_ignore_ascii_case("OFFSETS") {
+                            return Err(f.error(
+                                "the OFFSETS/CONNECTIVITY cell layout (VTK 5.1) is not supported",
+                            ));
+                        }
+                        corners.push(
+                            parse_int(s).ok_or_else(|| {
+                                f.error(format!("bad integer '{s}' for a corner"))
+                            })?,
+                        );
+                    }
+                    match kw {
+                        "POLYGONS" => {
+                            if m == 0 {
+                                return Err(f.error(format!("polygon {k} has no corners")));
+                            }
+                            cell_of_facet.push(k);
+                            polys.push(corners, line, 0);
+                        }
+                        "CELLS" => types_from.push((corners, line)),
+                        _ => {}
+                    }
+                }
+                match kw {
+                    "VERTICES" | "LINES" => cells_before_polygons += n,
+                    "POLYGONS" => num_cells += n,
+                    "CELLS" => {
+                        if !unstructured {
+                            return Err(f.error("CELLS outside an UNSTRUCTURED_GRID dataset"));
+                        }
+                        let kw2 = f.require("CELL_TYPES")?;
+                        if !kw2.eq_ignore_ascii_case("CELL_TYPES") {
+                            return Err(f.error(format!("expected CELL_TYPES, got '{kw2}'")));
+                        }
+                        let nt = f.count("the cell type count")?;
+                        if nt != n {
+                            return Err(f.error(format!("{nt} cell types for {n} cells")));
+                        }
+                        for (k, (mut corners, line)) in types_from.into_iter().enumerate() {
+                            let t = f.int("a cell type")?;
+                            let need = match t {
+                                VTK_TRIANGLE => Some(3),
+                                VTK_PIXEL | VTK_QUAD => Some(4),
+                                VTK_POLYGON => Some(0),
+                                // Vertices and lines (1-4) and 3D cells (10-16, 24-29, 42)
+                                // are not part of a surface.
+                                1..=4 | 10..=16 | 24..=29 | 42 => None,
+                                _ => {
+                                    return Err(f.error(format!(
+                                        "cell {k} has type {t}, which is neither a surface cell \
+                                         (5 triangle, 7 polygon, 8 pixel, 9 quad) nor a vertex, \
+                                         line or 3D cell"
+                                    )))
+                                }
+                            };
+                            let Some(need) = need else { continue };
+                            if (need > 0 && corners.len() != need) || corners.is_empty() {
+                                return Err(ParseError::new(
+                                    file,
+                                    line,
+                                    format!("cell {k} (type {t}) has {} corners", corners.len()),
+                                ));
+                            }
+                            if t == VTK_PIXEL {
+                                corners.swap(2, 3);
+                            }
+                            cell_of_facet.push(k);
+                            polys.push(corners, line, 0);
+                        }
+                        num_cells = n;
+                    }
+                    _ => num_cells += n,
+                }
+            }
+            "CELL_DATA" => {
+                let n = f.count("the cell data count")?;
+                if unstructured {
+                    cells_before_polygons = 0;
+                }
+                if n != num_cells + cells_before_polygons {
+                    return Err(f.error(format!("CELL_DATA {n} for {num_cells} cells")));
+                }
+                cell_data = true;
+            }
+            "POINT_DATA" => {
+                f.count("the point data count")?;
+                cell_data = false;
+            }
+            "SCALARS" if cell_data => {
+                let name = f.require("the scalars' name")?;
+                let ty = f.require("the scalars' type")?;
+                let rest = f.rest_of_line();
+                if name != "marker" || !ty.to_ascii_lowercase().contains("int") || rest.len() > 1 {
+                    continue;
+                }
+                if rest.first().is_some_and(|c| *c != "1") {
+                    continue;
+                }
+                let lut = f.require("LOOKUP_TABLE")?;
+                if lut.eq_ignore_ascii_case("LOOKUP_TABLE") {
+                    f.require("the lookup table name")?;
+                } else {
+                    return Err(f.error(format!("expected LOOKUP_TABLE, got '{lut}'")));
+                }
+                let n = num_cells + cells_before_polygons;
+                let mut markers = Vec::with_capacity(capacity(n, text));
+                for k in 0..n {
+                    let v = f.int(&format!("the marker of cell {k}"))?;
+                    markers.push(
+                        i32::try_from(v)
+                            .map_err(|_| f.error(format!("marker {v} does not fit in 32 bits")))?,
+                    );
+                }
+                for (facet, &cell) in cell_of_facet.iter().enumerate() {
+                    polys.markers[facet] = markers[cells_before_polygons + cell];
+                }
+            }
+            _ => {}
+        }
+    }
+    let points = points.ok_or_else(|| ParseError::new(file, 0, "no POINTS section"))?;
+    if polys.lines.is_empty() {
+        return Err(ParseError::new(
+            file,
+            0,
+            "no surface cells (POLYGONS, or CELLS of type 5, 7, 8 or 9)",
+        ));
+    }
+    polys.into_input(file, points, 0)
+}
+
 /// Reads an `.off` file.
 pub fn read_off(path: &Path) -> Result<TetgenInput, ParseError> {
     parse_off(&read_text(path)?, &path.display().to_string())
@@ -506,6 +775,11 @@ pub fn read_stl(path: &Path) -> Result<TetgenInput, ParseError> {
 /// Reads an ASCII `.ply` file.
 pub fn read_ply(path: &Path) -> Result<TetgenInput, ParseError> {
     parse_ply(&read_text(path)?, &path.display().to_string())
+}
+
+/// Reads a legacy ASCII VTK `.vtk` file as a surface (see [`parse_vtk`]).
+pub fn read_vtk(path: &Path) -> Result<TetgenInput, ParseError> {
+    parse_vtk(&read_text(path)?, &path.display().to_string())
 }
 
 /// Reads a Medit `.mesh` file.

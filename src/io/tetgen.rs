@@ -1,7 +1,8 @@
 //! TetGen's file formats, and the surface formats TetGen reads as PLCs.
 //!
 //! Reading: [`read_input`] picks the reader by extension; [`parse_node`], [`parse_poly`],
-//! [`parse_smesh`], [`parse_off`], [`parse_stl`], [`parse_ply`] and [`parse_medit`] read text
+//! [`parse_smesh`], [`parse_off`], [`parse_stl`], [`parse_ply`], [`parse_medit`] and
+//! [`parse_vtk`] read text
 //! (bytes for STL). Each gives a [`TetgenInput`] whose [`Plc`](crate::Plc) is 0-based and
 //! ready for [`tetrahedralize`](crate::tetrahedralize); its `base` records the file's
 //! numbering (0 or 1) so that output can be numbered the same way. [`parse_ele`],
@@ -28,7 +29,8 @@ use std::path::Path;
 use super::error::ParseError;
 
 pub use super::surface_read::{
-    parse_medit, parse_off, parse_ply, parse_stl, read_medit, read_off, read_ply, read_stl,
+    parse_medit, parse_off, parse_ply, parse_stl, parse_vtk, read_medit, read_off, read_ply,
+    read_stl, read_vtk,
 };
 pub use super::tetgen_input::TetgenInput;
 pub use super::tetgen_read::{
@@ -41,7 +43,7 @@ pub use super::tetgen_write::{
 };
 
 /// Reads any input file TetGen reads, chosen by extension: `.node`, `.poly`, `.smesh`,
-/// `.off`, `.stl`, `.ply`, `.mesh` (Medit) or `.msh` (Gmsh).
+/// `.off`, `.stl`, `.ply`, `.mesh` (Medit), `.msh` (Gmsh) or `.vtk` (legacy VTK surface).
 pub fn read_input(path: &Path) -> Result<TetgenInput, ParseError> {
     let ext = path
         .extension()
@@ -56,10 +58,12 @@ pub fn read_input(path: &Path) -> Result<TetgenInput, ParseError> {
         Some("ply") => read_ply(path),
         Some("mesh") => read_medit(path),
         Some("msh") => super::msh_read::read_msh(path),
+        Some("vtk") => read_vtk(path),
         _ => Err(ParseError::new(
             &path.display().to_string(),
             0,
-            "unknown file type: expected .node, .poly, .smesh, .off, .stl, .ply, .mesh or .msh",
+            "unknown file type: expected .node, .poly, .smesh, .off, .stl, .ply, .mesh, .msh \
+             or .vtk",
         )),
     }
 }

@@ -440,7 +440,7 @@ pub fn say(sw: &TetSwitches, text: std::fmt::Arguments<'_>) {
 }
 
 /// The extensions of PLC files, which imply `-p`.
-pub const PLC_EXTENSIONS: [&str; 7] = ["poly", "smesh", "off", "stl", "ply", "mesh", "msh"];
+pub const PLC_EXTENSIONS: [&str; 8] = ["poly", "smesh", "off", "stl", "ply", "mesh", "msh", "vtk"];
 
 /// Where to read and where to write.
 #[derive(Debug, Clone, PartialEq)]

@@ -22,7 +22,8 @@ idmesh tetgen: quality conforming Delaunay tetrahedralization, with TetGen's com
 Usage: idmesh tetgen [-SWITCHES] FILE
 
 FILE is FILE.node (a point set) or, with -p, FILE.poly or FILE.smesh (a piecewise linear
-complex); FILE.off, FILE.stl, FILE.ply and FILE.mesh (Medit) are surfaces read as PLCs, and
+complex); FILE.off, FILE.stl, FILE.ply, FILE.mesh (Medit) and FILE.vtk (legacy ASCII VTK:
+its triangles, quads and polygons; 3D cells are skipped) are surfaces read as PLCs, and
 those extensions, like .poly and .smesh, imply -p. Surface files are repaired first, with a
 warning per kind of repair unless -Q: duplicate vertices merged, zero-area faces and
 unreferenced vertices dropped, non-planar faces triangulated (output vertices: the kept input
@@ -201,7 +202,10 @@ fn is_surface(file: &str) -> bool {
         .extension()
         .and_then(|e| e.to_str())
         .map(|e| e.to_ascii_lowercase());
-    matches!(ext.as_deref(), Some("off" | "stl" | "ply" | "mesh" | "msh"))
+    matches!(
+        ext.as_deref(),
+        Some("off" | "stl" | "ply" | "mesh" | "msh" | "vtk")
+    )
 }
 
 /// A one-line message for a mesher error, with item numbers as in the input file (and the

@@ -858,7 +858,7 @@ typedef struct idm_tetgen_items_view {
   size_t count;
   /**
    * Indices per item: 4 for `.ele` (the corners of 10-node files too), 3 for `.face`, 2
-   * for `.var` segment constraints, 0 for `.vol`, `.mtr` and `.var` facet constraints.
+   * for `.edge` and `.var` segment constraints, 0 for `.vol`, `.mtr` and `.var` facet constraints.
    */
   size_t per_item;
   /**
@@ -874,7 +874,8 @@ typedef struct idm_tetgen_items_view {
    */
   const double *attributes;
   /**
-   * One marker per item (`.face` with markers; `.var` facet constraints), else NULL.
+   * One marker per item (`.face` and `.edge` with markers; `.var` facet constraints), else
+   * NULL.
    */
   const int32_t *markers;
   /**
@@ -1741,7 +1742,8 @@ enum idm_status idm_tetgen_extra_output(const struct idm_tetgen_extra *e,
  * file, 2 a `.vol` file (`num_tets` lines), 3 an `.mtr` file (`num_points` lines, one size
  * each), 4 the facet constraints of a `.var` file (`markers` and `values`: marker and
  * maximum area per constraint), 5 its segment constraints (2 `indices` and one `values`,
- * the maximum length, per constraint); indices refer to `num_points` points numbered from `base` (0 or 1). Errors name the
+ * the maximum length, per constraint), 6 an `.edge` file (2 `indices` per edge, `markers`
+ * when the file has them); indices refer to `num_points` points numbered from `base` (0 or 1). Errors name the
  * file and line.
  *
  * # Safety

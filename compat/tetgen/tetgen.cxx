@@ -145,10 +145,6 @@ bool read_with(tetgenio *io, const char *name, const char *ext) {
   return read_into(io, path);
 }
 
-bool refuse_load(const char *what, const char *name) {
-  fprintf(stderr, "Error:  idmesh's TetGen interface does not read %s files (%s).\n", what, name);
-  return false;
-}
 
 // The switch string equivalent to the fields of `b`, for idmesh's parser: every field that
 // differs from what the switches would set is spelled as its switch, so that a field idmesh
@@ -338,6 +334,13 @@ void load_input(Mesher &mh, const tetgenio *in, bool quiet) {
     check(idm_mesher3d_add_facet(m, idx.data(), offsets.data(), (size_t)fa.numberofpolygons,
                                  fa.holelist, (size_t)(fa.numberofholes > 0 ? fa.numberofholes : 0),
                                  marker));
+  }
+  // As TetGen: input edges (edgelist, e.g. from load_edge) are segments of the PLC.
+  if (in->numberofedges > 0 && in->edgelist != nullptr) {
+    idx.clear();
+    for (int i = 0; i < 2 * in->numberofedges; i++) idx.push_back((uint32_t)(in->edgelist[i] - b));
+    check(idm_mesher3d_add_segments(m, idx.data(), (size_t)in->numberofedges,
+                                    in->edgemarkerlist));
   }
   for (int h = 0; h < in->numberofholes; h++) check(idm_mesher3d_add_hole(m, &in->holelist[3 * h]));
   for (int r = 0; r < in->numberofregions; r++) {
@@ -702,6 +705,7 @@ bool tetgenbehavior::parse_commandline(int argc, char **argv) {
              : has_suffix(in, ".ply")                            ? PLY
              : has_suffix(in, ".stl")                            ? STL
              : has_suffix(in, ".mesh")                           ? MEDIT
+             : has_suffix(in, ".vtk")                            ? VTK
                                                                  : NODES;
   }
   return true;
@@ -712,8 +716,7 @@ bool tetgenio::load_off(char *name) { return read_with(this, name, ".off"); }
 bool tetgenio::load_ply(char *name) { return read_with(this, name, ".ply"); }
 bool tetgenio::load_stl(char *name) { return read_with(this, name, ".stl"); }
 bool tetgenio::load_medit(char *name, int) { return read_with(this, name, ".mesh"); }
-bool tetgenio::load_vtk(char *name) { return refuse_load("VTK", name); }
-bool tetgenio::load_edge(char *name) { return refuse_load(".edge", name); }
+bool tetgenio::load_vtk(char *name) { return read_with(this, name, ".vtk"); }
 
 namespace {
 struct Items {
@@ -804,19 +807,34 @@ bool tetgenio::load_tet(char *name) {
   return true;
 }
 
+namespace {
+// Replaces `list`/`markers`/`count` with the items read (markers NULL when the file has none).
+void take_items(const Items &it, int *&list, int *&markers, int &count) {
+  delete[] list;
+  delete[] markers;
+  markers = nullptr;
+  count = (int)it.v.count;
+  list = new_array<int>(it.v.per_item * it.v.count);
+  for (size_t i = 0; i < it.v.per_item * it.v.count; i++) list[i] = it.v.indices[i];
+  if (it.v.markers != nullptr) {
+    markers = new_array<int>(it.v.count);
+    for (size_t i = 0; i < it.v.count; i++) markers[i] = it.v.markers[i];
+  }
+}
+}  // namespace
+
 bool tetgenio::load_face(char *name) {
   Items it;
   if (!read_items(this, name, ".face", 1, it)) return false;
-  delete[] trifacelist;
-  delete[] trifacemarkerlist;
-  trifacemarkerlist = nullptr;
-  numberoftrifaces = (int)it.v.count;
-  trifacelist = new_array<int>(3 * it.v.count);
-  for (size_t i = 0; i < 3 * it.v.count; i++) trifacelist[i] = it.v.indices[i];
-  if (it.v.markers != nullptr) {
-    trifacemarkerlist = new_array<int>(it.v.count);
-    for (size_t i = 0; i < it.v.count; i++) trifacemarkerlist[i] = it.v.markers[i];
-  }
+  take_items(it, trifacelist, trifacemarkerlist, numberoftrifaces);
+  return true;
+}
+
+// As TetGen: the edges (and markers) of FILE.edge, which tetrahedralize takes as segments.
+bool tetgenio::load_edge(char *name) {
+  Items it;
+  if (!read_items(this, name, ".edge", 6, it)) return false;
+  take_items(it, edgelist, edgemarkerlist, numberofedges);
   return true;
 }
 
@@ -838,12 +856,65 @@ bool tetgenio::load_mtr(char *name) {
   for (size_t i = 0; i < it.v.count; i++) pointmtrlist[i] = it.v.values[i];
   return true;
 }
-bool tetgenio::load_pbc(char *name) { return refuse_load(".pbc", name); }
+// TetGen's line helpers, for programs that parse their own files with them. A number starts
+// with a digit, '.', '+' or '-'; '#' starts a comment.
+namespace {
+bool number_start(char c) { return (c >= '0' && c <= '9') || c == '.' || c == '+' || c == '-'; }
+
+// Skips to the next number-like character; stops (and ends the string) at a comment.
+char *skip_to_number(char *s) {
+  while (*s != '\0' && *s != '#' && !number_start(*s)) s++;
+  if (*s == '#') *s = '\0';
+  return s;
+}
+}  // namespace
+
+char *tetgenio::readline(char *string, FILE *infile, int *linenumber) {
+  for (;;) {
+    if (fgets(string, INPUTLINESIZE - 1, infile) == NULL) return NULL;
+    if (linenumber != NULL) (*linenumber)++;
+    char *s = string;
+    while (*s == ' ' || *s == '\t') s++;
+    if (*s != '\0' && *s != '\r' && *s != '\n') return s;
+  }
+}
+
+char *tetgenio::findnextfield(char *string) {
+  char *s = string;
+  while (*s != '\0' && *s != ' ' && *s != '\t' && *s != ',' && *s != ';') s++;
+  while (*s == ' ' || *s == '\t' || *s == ',' || *s == ';') s++;
+  return s;
+}
+
+char *tetgenio::readnumberline(char *string, FILE *infile, char *) {
+  for (;;) {
+    if (fgets(string, INPUTLINESIZE, infile) == NULL) return NULL;
+    char *s = string;
+    while (*s != '\0' && *s != '#' && !number_start(*s)) s++;
+    if (*s != '\0' && *s != '#') return s;
+  }
+}
+
+char *tetgenio::findnextnumber(char *string) {
+  char *s = string;
+  while (*s != '\0' && *s != '#' && *s != ' ' && *s != '\t' && *s != ',') s++;
+  return skip_to_number(s);
+}
+
+// TetGen 1.5 and 1.6 declare load_pbc but define it nowhere (Debian's libtet exports no such
+// symbol) and tetgenio has no periodic-boundary fields to load into: refused.
+bool tetgenio::load_pbc(char *name) {
+  fprintf(stderr,
+          "Error:  load_pbc: periodic boundary conditions are not supported (TetGen 1.5 and "
+          "1.6 do not implement them either; %s not read).\n",
+          name);
+  return false;
+}
 
 bool tetgenio::load_plc(char *name, int object) {
   std::string p = name;
   if (has_suffix(p, ".poly") || has_suffix(p, ".smesh")) return load_poly(name);
-  for (const char *ext : {".node", ".off", ".ply", ".stl", ".mesh"})
+  for (const char *ext : {".node", ".off", ".ply", ".stl", ".mesh", ".vtk"})
     if (has_suffix(p, ext)) return read_into(this, p);
   switch (object) {
   case tetgenbehavior::NODES:
@@ -858,8 +929,10 @@ bool tetgenio::load_plc(char *name, int object) {
     return load_stl(name);
   case tetgenbehavior::MEDIT:
     return load_medit(name, 0);
+  case tetgenbehavior::VTK:
+    return load_vtk(name);
   default:
-    return refuse_load("VTK", name);
+    return load_poly(name);
   }
 }
 

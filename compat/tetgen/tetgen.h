@@ -24,6 +24,9 @@
  *              message (printed unless Q, and in idm_last_error()) names the switch.
  * Input refused (throw 10, message says which): facet and segment constraints, anisotropic
  *   metrics (numberofpointmtrs other than 1).
+ * Input edges (edgelist + edgemarkerlist, e.g. from load_edge) are segments of the PLC, as in
+ *   TetGen. load_vtk reads legacy ASCII VTK surfaces; load_pbc returns false (TetGen 1.5/1.6
+ *   implement it nowhere: tetgenio has no periodic-boundary fields).
  * Output: pointlist (with o2 the edge nodes after the vertices), pointmarkerlist (unless B),
  *   pointattributelist (input attributes, linearly interpolated at Steiner points),
  *   tetrahedronlist (4 or 10 corners), tetrahedronattributelist (A, or r with attributes),
@@ -198,6 +201,18 @@ public:
   void save_neighbors(char *);
   void save_poly(char *);
   void save_faces2smesh(char *);
+
+  /* TetGen's line helpers (as in TetGen 1.5): readline returns the next line that is not
+   * blank (at its first non-blank character; comments are not skipped), NULL at the end of
+   * the file, counting lines in *linenumber when not NULL; findnextfield skips the current
+   * field and the separators after it (blanks, ',', ';'); readnumberline returns the next
+   * line with a number before any '#', at that number (the file name is unused);
+   * findnextnumber skips the current number and whatever follows up to the next number,
+   * returning the end of the string at a '#' (which it overwrites with '\0'). */
+  char *readline(char *string, FILE *infile, int *linenumber);
+  char *findnextfield(char *string);
+  char *readnumberline(char *string, FILE *infile, char *infilename);
+  char *findnextnumber(char *string);
 
   static void init(polygon *p) {
     p->vertexlist = NULL;

@@ -1007,7 +1007,7 @@ pub struct idm_tetgen_items_view {
     /// Number of items (tetrahedra, faces, volume bounds or sizes).
     pub count: usize,
     /// Indices per item: 4 for `.ele` (the corners of 10-node files too), 3 for `.face`, 2
-    /// for `.var` segment constraints, 0 for `.vol`, `.mtr` and `.var` facet constraints.
+    /// for `.edge` and `.var` segment constraints, 0 for `.vol`, `.mtr` and `.var` facet constraints.
     pub per_item: usize,
     /// The indices, numbered from the `base` given to `idm_tetgen_read_items`.
     pub indices: *const i32,
@@ -1015,7 +1015,8 @@ pub struct idm_tetgen_items_view {
     pub num_attributes: usize,
     /// `num_attributes` per item.
     pub attributes: *const f64,
-    /// One marker per item (`.face` with markers; `.var` facet constraints), else NULL.
+    /// One marker per item (`.face` and `.edge` with markers; `.var` facet constraints), else
+    /// NULL.
     pub markers: *const i32,
     /// One value per item (`.vol`: maximum volume; `.mtr`: size; `.var`: maximum area or
     /// length), else NULL.
@@ -1026,7 +1027,8 @@ pub struct idm_tetgen_items_view {
 /// file, 2 a `.vol` file (`num_tets` lines), 3 an `.mtr` file (`num_points` lines, one size
 /// each), 4 the facet constraints of a `.var` file (`markers` and `values`: marker and
 /// maximum area per constraint), 5 its segment constraints (2 `indices` and one `values`,
-/// the maximum length, per constraint); indices refer to `num_points` points numbered from `base` (0 or 1). Errors name the
+/// the maximum length, per constraint), 6 an `.edge` file (2 `indices` per edge, `markers`
+/// when the file has them); indices refer to `num_points` points numbered from `base` (0 or 1). Errors name the
 /// file and line.
 ///
 /// # Safety
@@ -1040,7 +1042,7 @@ pub unsafe extern "C" fn idm_tetgen_read_items(
     base: u32,
     out: *mut *mut idm_tetgen_items,
 ) -> idm_status {
-    use crate::io::tetgen::{parse_ele, parse_face, parse_mtr, parse_var, parse_vol};
+    use crate::io::tetgen::{parse_edge, parse_ele, parse_face, parse_mtr, parse_var, parse_vol};
     guard(|| {
         // SAFETY (all blocks here): the caller's contract, checked as far as possible.
         let path = unsafe { c_str(path, "path") }?;
@@ -1086,7 +1088,13 @@ pub unsafe extern "C" fn idm_tetgen_read_items(
                 items.indices = v.segments.iter().flat_map(|c| c.0).map(shift).collect();
                 items.values = v.segments.iter().map(|c| c.1).collect();
             }
-            k => return Err(Failure::invalid(format!("kind {k} is not 0 to 5"))),
+            6 => {
+                let e = parse_edge(&text, path, base, num_points).map_err(bad)?;
+                items.per_item = 2;
+                items.indices = e.items.iter().flatten().map(|&v| shift(v)).collect();
+                items.markers = e.markers;
+            }
+            k => return Err(Failure::invalid(format!("kind {k} is not 0 to 6"))),
         }
         unsafe { out.write(Box::into_raw(Box::new(items))) };
         Ok(())

@@ -2,12 +2,13 @@
 // legacy VTK surface that then meshes to its volume (and a bad file fails naming the line);
 // load_edge fills edgelist/edgemarkerlist, and tetrahedralize takes those edges as segments;
 // load_pbc is refused; readline, findnextfield, readnumberline and findnextnumber walk a file
-// as TetGen's do. Files are written to the current directory (ctest's build directory).
+// as TetGen's do, and load_node_call reads the points after a header the caller parsed. Files are written to the current directory (ctest's build directory).
 #include <tetgen.h>
 #include <idmesh.h>
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 static int failures = 0;
@@ -183,7 +184,45 @@ static void line_helpers() {
   fclose(f);
 }
 
+// load_node_call: the caller reads the header line itself (with TetGen's helpers), then the
+// points come from the open file.
+static void node_call() {
+  write_file("loaders_points.node",
+             "# header next\n3 3 1 1\n1 0 0 0 7.5 4\n\n2 1 0 0 8.5 5 # comment\n3 0 1 0 9.5 6\n");
+  write_file("loaders_short.node", "3 3 0 0\n1 0 0 0\n2 1 0\n3 0 1 0\n");
+  for (int bad = 0; bad < 2; bad++) {
+    FILE *f = fopen(bad ? "loaders_short.node" : "loaders_points.node", "r");
+    if (f == NULL) return check(false, "cannot read the .node file");
+    tetgenio io;
+    char buf[INPUTLINESIZE];
+    char name[] = "loaders_points.node";
+    char *s = io.readnumberline(buf, f, name);
+    io.numberofpoints = (int)strtol(s, &s, 0);
+    s = io.findnextnumber(s);
+    io.mesh_dim = (int)strtol(s, &s, 0);
+    s = io.findnextnumber(s);
+    io.numberofpointattributes = (int)strtol(s, &s, 0);
+    s = io.findnextnumber(s);
+    int markers = (int)strtol(s, &s, 0);
+    bool ok = io.load_node_call(f, markers, 0, name);
+    fclose(f);
+    if (bad) {
+      check(!ok, "load_node_call fails on a point without z");
+      continue;
+    }
+    check(ok, std::string("load_node_call: ") + idm_last_error());
+    check(io.numberofpoints == 3 && io.firstnumber == 1 && io.pointlist[3] == 1.0 &&
+              io.pointlist[7] == 1.0,
+          "load_node_call: 3 points, 1-based, coordinates");
+    check(io.numberofpointattributes == 1 && io.pointattributelist != NULL &&
+              io.pointattributelist[2] == 9.5,
+          "load_node_call: attributes");
+    check(io.pointmarkerlist != NULL && io.pointmarkerlist[1] == 5, "load_node_call: markers");
+  }
+}
+
 int main() {
+  node_call();
   vtk();
   edges();
   line_helpers();

@@ -1557,6 +1557,16 @@ enum idm_status idm_tetgen_resolve(const char *file,
 enum idm_status idm_tetgen_read(const char *path, struct idm_plc3d **out);
 
 /**
+ * Parses the text of a `.node` file (header line included) with idmesh's reader into `*out`,
+ * as `idm_tetgen_read` reads a file; `name` names it in errors. For readers that have the
+ * lines already, such as the TetGen shim's `tetgenio::load_node_call`.
+ *
+ * # Safety
+ * `text` and `name` NUL-terminated strings; `out` valid for writing a pointer.
+ */
+enum idm_status idm_tetgen_parse_node(const char *text, const char *name, struct idm_plc3d **out);
+
+/**
  * Lends the arrays of `p` in `*out`.
  *
  * # Safety

@@ -82,11 +82,12 @@ bool has_suffix(const std::string &s, const char *suffix) {
 
 template <class T> T *new_array(size_t n) { return n == 0 ? nullptr : new T[n]; }
 
-// Reads `path` with idmesh's readers into `io` (its arrays are replaced).
-bool read_into(tetgenio *io, const std::string &path) {
+// Fills `io` (its arrays are replaced) with what `read` (idm_tetgen_read or
+// idm_tetgen_parse_node) gives.
+template <class Read> bool read_with_reader(tetgenio *io, Read read) {
   Plc plc;
   idm_plc3d_view v;
-  if (idm_tetgen_read(path.c_str(), &plc.p) != IDM_OK || idm_plc3d_arrays(plc.p, &v) != IDM_OK) {
+  if (read(&plc.p) != IDM_OK || idm_plc3d_arrays(plc.p, &v) != IDM_OK) {
     fprintf(stderr, "Error:  %s\n", idm_last_error());
     return false;
   }
@@ -136,6 +137,11 @@ bool read_into(tetgenio *io, const std::string &path) {
   io->regionlist = new_array<REAL>(5 * v.num_regions);
   for (size_t i = 0; i < 5 * v.num_regions; i++) io->regionlist[i] = v.regions[i];
   return true;
+}
+
+// Reads `path` with idmesh's readers into `io` (its arrays are replaced).
+bool read_into(tetgenio *io, const std::string &path) {
+  return read_with_reader(io, [&](idm_plc3d **p) { return idm_tetgen_read(path.c_str(), p); });
 }
 
 // Reads `name`, adding `ext` when it does not end with it already.
@@ -868,6 +874,33 @@ char *skip_to_number(char *s) {
   return s;
 }
 }  // namespace
+
+// The points of a .node section whose header line the caller has read into numberofpoints,
+// mesh_dim and numberofpointattributes (as TetGen's load_node_call): the next numberofpoints
+// number lines of `infile`, parsed by idmesh's .node reader (errors name the point).
+bool tetgenio::load_node_call(FILE *infile, int markers, int uvflag, char *infilename) {
+  const char *name = infilename != NULL ? infilename : "(node section)";
+  if (uvflag) {
+    fprintf(stderr, "Error:  load_node_call: point parameters (uvflag) are not supported (%s).\n",
+            name);
+    return false;
+  }
+  if (infile == NULL || numberofpoints < 0) {
+    fprintf(stderr, "Error:  load_node_call: no file or a negative point count (%s).\n", name);
+    return false;
+  }
+  std::string text = std::to_string(numberofpoints) + " " + std::to_string(mesh_dim) + " " +
+                     std::to_string(numberofpointattributes) + (markers ? " 1\n" : " 0\n");
+  char line[INPUTLINESIZE];
+  for (int i = 0; i < numberofpoints; i++) {
+    char *s = readnumberline(line, infile, infilename);
+    if (s == NULL) break;  // The reader reports the missing points.
+    text += s;
+    if (text.back() != '\n') text += '\n';
+  }
+  return read_with_reader(
+      this, [&](idm_plc3d **p) { return idm_tetgen_parse_node(text.c_str(), name, p); });
+}
 
 char *tetgenio::readline(char *string, FILE *infile, int *linenumber) {
   for (;;) {

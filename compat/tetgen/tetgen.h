@@ -178,6 +178,7 @@ public:
 
   /* Input and output through idmesh's readers (node, poly, smesh, off, ply, stl, medit). The
    * name may carry the extension or not. They return false and print why on failure. */
+  bool load_node_call(FILE *infile, int markers, int uvflag, char *infilename);
   bool load_node(char *);
   bool load_edge(char *);
   bool load_face(char *);

@@ -403,54 +403,86 @@ pub unsafe extern "C" fn idm_tetgen_read(
         check_out(out, "out")?;
         let input = read_input(Path::new(path))
             .map_err(|e| Failure::new(idm_status::IDM_ERR_INVALID_INPUT, e.to_string()))?;
-        let plc = &input.plc;
-        let mut p = idm_plc3d {
-            base: input.base,
-            points: plc.points.iter().flatten().copied().collect(),
-            point_markers: plc.point_markers.clone(),
-            num_point_attributes: input.num_point_attributes,
-            point_attributes: input.point_attributes.clone(),
-            facet_polygon_offsets: vec![0],
-            polygon_offsets: vec![0],
-            polygon_indices: Vec::new(),
-            facet_hole_offsets: vec![0],
-            facet_holes: Vec::new(),
-            facet_markers: Vec::new(),
-            holes: plc.holes.iter().flatten().copied().collect(),
-            regions: plc
-                .regions
-                .iter()
-                .flat_map(|r| {
-                    let [x, y, z] = r.point;
-                    [x, y, z, r.attribute, r.max_volume.unwrap_or(-1.0)]
-                })
-                .collect(),
-        };
-        let segments = plc.segments.iter().zip(
-            plc.segment_markers
-                .iter()
-                .copied()
-                .chain(std::iter::repeat(0)),
-        );
-        let facets = plc
-            .facets
-            .iter()
-            .map(|f| (f.polygons.clone(), f.holes.as_slice(), f.marker))
-            .chain(segments.map(|(s, m)| (vec![s.to_vec()], &[][..], m)));
-        for (polygons, holes, marker) in facets {
-            for poly in &polygons {
-                p.polygon_indices.extend_from_slice(poly);
-                p.polygon_offsets.push(p.polygon_indices.len());
-            }
-            p.facet_polygon_offsets.push(p.polygon_offsets.len() - 1);
-            p.facet_holes.extend(holes.iter().flatten());
-            p.facet_hole_offsets.push(p.facet_holes.len() / 3);
-            p.facet_markers.push(marker);
-        }
+        let p = plc3d_of(&input);
         // SAFETY: checked above.
         unsafe { out.write(Box::into_raw(Box::new(p))) };
         Ok(())
     })
+}
+
+/// Parses the text of a `.node` file (header line included) with idmesh's reader into `*out`,
+/// as `idm_tetgen_read` reads a file; `name` names it in errors. For readers that have the
+/// lines already, such as the TetGen shim's `tetgenio::load_node_call`.
+///
+/// # Safety
+/// `text` and `name` NUL-terminated strings; `out` valid for writing a pointer.
+#[no_mangle]
+pub unsafe extern "C" fn idm_tetgen_parse_node(
+    text: *const c_char,
+    name: *const c_char,
+    out: *mut *mut idm_plc3d,
+) -> idm_status {
+    guard(|| {
+        // SAFETY (all blocks here): the caller's contract, checked as far as possible.
+        let text = unsafe { c_str(text, "text") }?;
+        let name = unsafe { c_str(name, "name") }?;
+        check_out(out, "out")?;
+        let input = crate::io::tetgen::parse_node(text, name)
+            .map_err(|e| Failure::new(idm_status::IDM_ERR_INVALID_INPUT, e.to_string()))?;
+        let p = plc3d_of(&input);
+        // SAFETY: checked above.
+        unsafe { out.write(Box::into_raw(Box::new(p))) };
+        Ok(())
+    })
+}
+
+/// The C form of a read input: points, facets (segments as 2-vertex facets), holes, regions.
+fn plc3d_of(input: &crate::io::tetgen::TetgenInput) -> idm_plc3d {
+    let plc = &input.plc;
+    let mut p = idm_plc3d {
+        base: input.base,
+        points: plc.points.iter().flatten().copied().collect(),
+        point_markers: plc.point_markers.clone(),
+        num_point_attributes: input.num_point_attributes,
+        point_attributes: input.point_attributes.clone(),
+        facet_polygon_offsets: vec![0],
+        polygon_offsets: vec![0],
+        polygon_indices: Vec::new(),
+        facet_hole_offsets: vec![0],
+        facet_holes: Vec::new(),
+        facet_markers: Vec::new(),
+        holes: plc.holes.iter().flatten().copied().collect(),
+        regions: plc
+            .regions
+            .iter()
+            .flat_map(|r| {
+                let [x, y, z] = r.point;
+                [x, y, z, r.attribute, r.max_volume.unwrap_or(-1.0)]
+            })
+            .collect(),
+    };
+    let segments = plc.segments.iter().zip(
+        plc.segment_markers
+            .iter()
+            .copied()
+            .chain(std::iter::repeat(0)),
+    );
+    let facets = plc
+        .facets
+        .iter()
+        .map(|f| (f.polygons.clone(), f.holes.as_slice(), f.marker))
+        .chain(segments.map(|(s, m)| (vec![s.to_vec()], &[][..], m)));
+    for (polygons, holes, marker) in facets {
+        for poly in &polygons {
+            p.polygon_indices.extend_from_slice(poly);
+            p.polygon_offsets.push(p.polygon_indices.len());
+        }
+        p.facet_polygon_offsets.push(p.polygon_offsets.len() - 1);
+        p.facet_holes.extend(holes.iter().flatten());
+        p.facet_hole_offsets.push(p.facet_holes.len() / 3);
+        p.facet_markers.push(marker);
+    }
+    p
 }
 
 /// Lends the arrays of `p` in `*out`.

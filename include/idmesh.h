@@ -594,6 +594,19 @@ typedef struct idm_stats3d {
    * point cap (refine then returned `IDM_INCOMPLETE`).
    */
   int32_t complete;
+  /**
+   * Number of tetrahedra whose smallest dihedral angle is below 5 degrees (appended after
+   * 0.2.0: filled when the caller's struct has room, see `idm_mesher3d_stats`).
+   */
+  size_t tets_below_5;
+  /**
+   * Number of tetrahedra whose smallest dihedral angle is below 10 degrees.
+   */
+  size_t tets_below_10;
+  /**
+   * Number of tetrahedra whose smallest dihedral angle is below 15 degrees.
+   */
+  size_t tets_below_15;
 } idm_stats3d;
 
 /**
@@ -1500,12 +1513,27 @@ enum idm_status idm_mesher3d_edges(const struct idm_mesher3d *m,
 
 /**
  * Computes the quality figures of the mesh into `*out` (one pass over the tetrahedra), with
- * its Steiner point count and complete flag.
+ * its Steiner point count and complete flag. Through the header this is a macro that calls
+ * `idm_mesher3d_stats_sized` with the caller's `sizeof(idm_stats3d)`; the function itself
+ * (for programs built against 0.2.0) writes only the fields up to `complete`.
  *
  * # Safety
- * `m` must be a live handle; `out` valid for writing an `idm_stats3d`.
+ * `m` must be a live handle; `out` valid for writing the fields up to `complete`.
  */
 enum idm_status idm_mesher3d_stats(const struct idm_mesher3d *m, struct idm_stats3d *out);
+
+/**
+ * `idm_mesher3d_stats` for a caller's struct of `struct_size` bytes (the header's
+ * `idm_mesher3d_stats` macro passes `sizeof(idm_stats3d)`): the fields that fit are written,
+ * bytes beyond this library's struct (fields of a newer header) are zeroed. A `struct_size`
+ * smaller than 0.2.0's struct is `IDM_ERR_INVALID_ARGUMENT`.
+ *
+ * # Safety
+ * `m` must be a live handle; `out` valid for writing `struct_size` bytes.
+ */
+enum idm_status idm_mesher3d_stats_sized(const struct idm_mesher3d *m,
+                                         struct idm_stats3d *out,
+                                         size_t struct_size);
 
 /**
  * Checks the output mesh invariants exactly (positive orientation, neighbour symmetry, empty
@@ -1940,4 +1968,10 @@ enum idm_status idm_triangle_second_order(const struct idm_mesher2d *m,
 #define IDMESH_OPTIONS_DEFAULT_MACROS
 #define idm_options2d_default(out) idm_options2d_default_sized((out), sizeof(struct idm_options2d))
 #define idm_options3d_default(out) idm_options3d_default_sized((out), sizeof(struct idm_options3d))
+#endif
+/* The stats struct grows at its end too: the macro passes the caller's sizeof, so that the
+   library writes only the caller's bytes. */
+#ifndef IDMESH_STATS_MACROS
+#define IDMESH_STATS_MACROS
+#define idm_mesher3d_stats(m, out) idm_mesher3d_stats_sized((m), (out), sizeof(struct idm_stats3d))
 #endif

@@ -101,6 +101,9 @@ struct Active {
     last: Instant,
     /// Set when the callback asked to stop (the stage it was in): every later tick fails.
     cancelled: Option<Stage>,
+    /// The `done` last reported in the current stage: a later report never goes below it
+    /// (a stage may run several loops that each count from their own start).
+    done: u64,
 }
 
 thread_local! {
@@ -135,6 +138,7 @@ pub fn observe<T>(
         stage: None,
         last: Instant::now(),
         cancelled: None,
+        done: 0,
     });
     let countdown = if active.is_some() {
         CHECK_EVERY
@@ -213,6 +217,19 @@ fn look(enter: Option<Stage>, work: impl FnOnce() -> (u64, u64)) -> Result<(), E
         return Ok(());
     };
     let (done, estimate) = work();
+    let entered = enter.is_some();
+    let done = ACTIVE.with(|a| match a.borrow_mut().as_mut() {
+        Some(a) if !entered => {
+            a.done = a.done.max(done);
+            a.done
+        }
+        Some(a) => {
+            a.done = done;
+            done
+        }
+        None => done,
+    });
+    let estimate = estimate.max(done);
     // No borrow is held while user code runs: it may itself mesh (see `observe`).
     if f(s, done, estimate).is_break() {
         ACTIVE.with(|a| {

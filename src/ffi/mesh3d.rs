@@ -128,7 +128,18 @@ pub struct idm_stats3d {
     /// 1 when every quality and size bound was met; 0 when refinement stopped at the Steiner
     /// point cap (refine then returned `IDM_INCOMPLETE`).
     pub complete: i32,
+    /// Number of tetrahedra whose smallest dihedral angle is below 5 degrees (appended after
+    /// 0.2.0: filled when the caller's struct has room, see `idm_mesher3d_stats`).
+    pub tets_below_5: usize,
+    /// Number of tetrahedra whose smallest dihedral angle is below 10 degrees.
+    pub tets_below_10: usize,
+    /// Number of tetrahedra whose smallest dihedral angle is below 15 degrees.
+    pub tets_below_15: usize,
 }
+
+/// The size of `idm_stats3d` in 0.2.0 (it ended with `complete`): what the plain
+/// `idm_mesher3d_stats` symbol writes, for programs built against that header.
+const STATS3D_BASELINE: usize = std::mem::offset_of!(idm_stats3d, tets_below_5);
 
 /// A user sizing test (TetGen's `tetunsuitable`): returns nonzero when the tetrahedron with
 /// corners `a`, `b`, `c`, `d` (each pointing to 3 doubles, valid only during the call) and
@@ -769,19 +780,45 @@ pub unsafe extern "C" fn idm_mesher3d_edges(
 }
 
 /// Computes the quality figures of the mesh into `*out` (one pass over the tetrahedra), with
-/// its Steiner point count and complete flag.
+/// its Steiner point count and complete flag. Through the header this is a macro that calls
+/// `idm_mesher3d_stats_sized` with the caller's `sizeof(idm_stats3d)`; the function itself
+/// (for programs built against 0.2.0) writes only the fields up to `complete`.
 ///
 /// # Safety
-/// `m` must be a live handle; `out` valid for writing an `idm_stats3d`.
+/// `m` must be a live handle; `out` valid for writing the fields up to `complete`.
 #[no_mangle]
 pub unsafe extern "C" fn idm_mesher3d_stats(
     m: *const idm_mesher3d,
     out: *mut idm_stats3d,
 ) -> idm_status {
+    // SAFETY: the caller's contract, forwarded.
+    unsafe { idm_mesher3d_stats_sized(m, out, STATS3D_BASELINE) }
+}
+
+/// `idm_mesher3d_stats` for a caller's struct of `struct_size` bytes (the header's
+/// `idm_mesher3d_stats` macro passes `sizeof(idm_stats3d)`): the fields that fit are written,
+/// bytes beyond this library's struct (fields of a newer header) are zeroed. A `struct_size`
+/// smaller than 0.2.0's struct is `IDM_ERR_INVALID_ARGUMENT`.
+///
+/// # Safety
+/// `m` must be a live handle; `out` valid for writing `struct_size` bytes.
+#[no_mangle]
+pub unsafe extern "C" fn idm_mesher3d_stats_sized(
+    m: *const idm_mesher3d,
+    out: *mut idm_stats3d,
+    struct_size: usize,
+) -> idm_status {
     guard(|| {
         // SAFETY (all blocks here): the caller's contract, checked as far as possible.
         let mesh = unsafe { mesh_of(m) }?;
         check_out(out, "out")?;
+        if struct_size < STATS3D_BASELINE || struct_size > isize::MAX as usize {
+            return Err(Failure::invalid(format!(
+                "struct_size is {struct_size}, not the size of an idm_stats3d of any version \
+                 (this library's is {})",
+                size_of::<idm_stats3d>()
+            )));
+        }
         let s = mesh.stats();
         let value = idm_stats3d {
             volume: s.volume,
@@ -790,8 +827,18 @@ pub unsafe extern "C" fn idm_mesher3d_stats(
             max_dihedral: s.max_dihedral,
             steiner_points: mesh.steiner_points,
             complete: mesh.complete.into(),
+            tets_below_5: s.tets_below[0],
+            tets_below_10: s.tets_below[1],
+            tets_below_15: s.tets_below[2],
         };
-        unsafe { out.write(value) };
+        let known = struct_size.min(size_of::<idm_stats3d>());
+        // SAFETY: `out` is valid for `struct_size` bytes (the caller's contract), `value` for
+        // its own size; they do not overlap.
+        unsafe {
+            let dst = out.cast::<u8>();
+            std::ptr::copy_nonoverlapping((&value as *const idm_stats3d).cast::<u8>(), dst, known);
+            std::ptr::write_bytes(dst.add(known), 0, struct_size - known);
+        }
         Ok(())
     })
 }
@@ -1002,7 +1049,10 @@ mod tests {
             out.edges = chunks(arr(pu, 2 * n));
             out.edge_markers = arr(pi, n);
             let mut s = std::mem::MaybeUninit::<idm_stats3d>::uninit();
-            assert_eq!(idm_mesher3d_stats(m.0, s.as_mut_ptr()), IDM_OK);
+            assert_eq!(
+                idm_mesher3d_stats_sized(m.0, s.as_mut_ptr(), size_of::<idm_stats3d>()),
+                IDM_OK
+            );
             let s = s.assume_init();
             out.complete = s.complete != 0;
             out.steiner_points = s.steiner_points;
@@ -1091,7 +1141,7 @@ mod tests {
             assert_eq!(idm_mesher3d_validate(null), IDM_ERR_NULL_POINTER);
             let mut s = std::mem::MaybeUninit::<idm_stats3d>::uninit();
             assert_eq!(
-                idm_mesher3d_stats(null, s.as_mut_ptr()),
+                idm_mesher3d_stats_sized(null, s.as_mut_ptr(), size_of::<idm_stats3d>()),
                 IDM_ERR_NULL_POINTER
             );
             assert!(last_error().contains("`m`"), "{}", last_error());
@@ -1465,7 +1515,10 @@ mod tests {
                 assert_eq!(idm_mesher3d_set_options(m.0, o), IDM_OK);
                 assert_eq!(idm_mesher3d_refine(m.0), IDM_OK, "{}", last_error());
                 assert_eq!(idm_mesher3d_validate(m.0), IDM_OK, "{}", last_error());
-                assert_eq!(idm_mesher3d_stats(m.0, s.as_mut_ptr()), IDM_OK);
+                assert_eq!(
+                    idm_mesher3d_stats_sized(m.0, s.as_mut_ptr(), size_of::<idm_stats3d>()),
+                    IDM_OK
+                );
                 s.assume_init()
             }
         };
@@ -1536,6 +1589,9 @@ mod tests {
             max_dihedral: -1.0,
             steiner_points: 99,
             complete: 42,
+            tets_below_5: 5,
+            tets_below_10: 10,
+            tets_below_15: 15,
         };
         let before = s;
         unsafe {
@@ -1592,7 +1648,10 @@ mod tests {
         assert_eq!(last_error(), "");
         // Stats are the Rust figures, with the complete flag and Steiner count.
         let mut s = std::mem::MaybeUninit::<idm_stats3d>::uninit();
-        assert_eq!(unsafe { idm_mesher3d_stats(m.0, s.as_mut_ptr()) }, IDM_OK);
+        assert_eq!(
+            unsafe { idm_mesher3d_stats_sized(m.0, s.as_mut_ptr(), size_of::<idm_stats3d>()) },
+            IDM_OK
+        );
         let s = unsafe { s.assume_init() };
         let r = want.stats();
         assert_eq!(
@@ -1601,6 +1660,36 @@ mod tests {
         );
         assert!((s.volume - 8.0 / 6.0).abs() < 1e-15, "{}", s.volume);
         assert_eq!((s.complete, s.steiner_points), (0, 3));
+        assert_eq!(
+            [s.tets_below_5, s.tets_below_10, s.tets_below_15],
+            r.tets_below
+        );
+        // The plain symbol (0.2.0 callers) writes 0.2.0's fields and nothing beyond; a newer
+        // caller's larger struct gets its unknown tail zeroed; a too small size is refused.
+        #[repr(C)]
+        struct Wider {
+            stats: idm_stats3d,
+            newer: [u64; 2],
+        }
+        let mut w = Wider {
+            stats: s,
+            newer: [u64::MAX; 2],
+        };
+        w.stats.tets_below_5 = 77;
+        assert_eq!(unsafe { idm_mesher3d_stats(m.0, &mut w.stats) }, IDM_OK);
+        assert_eq!(w.stats.tets_below_5, 77);
+        assert_eq!(w.stats.volume, s.volume);
+        let p = (&mut w as *mut Wider).cast::<idm_stats3d>();
+        assert_eq!(
+            unsafe { idm_mesher3d_stats_sized(m.0, p, size_of::<Wider>()) },
+            IDM_OK
+        );
+        assert_eq!((w.stats, w.newer), (s, [0, 0]));
+        assert_eq!(
+            unsafe { idm_mesher3d_stats_sized(m.0, p, STATS3D_BASELINE - 1) },
+            IDM_ERR_INVALID_ARGUMENT
+        );
+        assert!(last_error().contains("struct_size"), "{}", last_error());
         // Only some counts wanted; marker arrays not wanted.
         let np = std::ptr::null_mut();
         let mut nf = 0usize;

@@ -54,7 +54,7 @@ pub(super) fn run(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
     // allows), ends the stage with the mesh constrained Delaunay and reported incomplete.
     let mut passes = 0;
     loop {
-        while r.sweep_encroached() > 0 {
+        while r.sweep_encroached()? > 0 {
             passes += 1;
             if passes > 64 || r.budget_spent() {
                 r.complete = false;
@@ -771,7 +771,9 @@ fn output(r: &mut Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriM
     } else {
         pslg.point_markers.clone()
     };
+    // Progress: two passes over the triangle slots.
     for t in 0..nslots as u32 {
+        tick(|| (t as u64, 2 * nslots as u64))?;
         if !in_domain(cdt, t) {
             continue;
         }
@@ -841,6 +843,7 @@ fn output(r: &mut Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriM
     let mut triangles = std::mem::take(&mut cdt.tv);
     let mut neighbors = std::mem::take(&mut cdt.tn);
     for t in 0..nslots {
+        tick(|| ((nslots + t) as u64, 2 * nslots as u64))?;
         let k = tmap[t];
         if k == NONE {
             continue;

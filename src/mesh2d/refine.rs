@@ -305,24 +305,30 @@ impl<'a> Refiner<'a> {
 
     /// Queues every subsegment that some vertex (used by the domain, or an input point)
     /// encroaches; returns how many. A k-d tree over the vertices keeps it near-linear.
-    pub fn sweep_encroached(&mut self) -> usize {
+    /// Fails only when the run is cancelled (it reports progress: on a 1M-triangle mesh a
+    /// sweep takes a noticeable part of a second).
+    pub fn sweep_encroached(&mut self) -> Result<usize, Error> {
         let refining = self.will_refine();
+        let steiner = self.steiner();
         let cdt = &self.cdt;
         let live = |s: &Seg| s.a != NONE && !s.fixed && (refining || s.input != NONE);
         if !cdt.segs.iter().any(live) {
-            return 0;
+            return Ok(0);
         }
-        let used: Vec<u32> = (0..cdt.pts.len() as u32)
-            .filter(|&v| {
-                v != cdt.ghost && ((v as usize) < self.n_input || cdt.vtri[v as usize] != NONE)
-            })
-            .collect();
+        let mut used: Vec<u32> = Vec::new();
+        for v in 0..cdt.pts.len() as u32 {
+            tick(|| (steiner, 0))?;
+            if v != cdt.ghost && ((v as usize) < self.n_input || cdt.vtri[v as usize] != NONE) {
+                used.push(v);
+            }
+        }
         if used.is_empty() {
-            return 0;
+            return Ok(0);
         }
-        let tree = PointTree::new(&cdt.pts, &used);
+        let tree = PointTree::new(&cdt.pts, &used)?;
         let mut hits = Vec::new();
         for (s, seg) in cdt.segs.iter().enumerate() {
+            tick(|| (steiner, 0))?;
             // Retired segments are gone; hull edges only bound the domain when refining.
             if cdt.seg_queued[s] || !live(seg) {
                 continue;
@@ -341,7 +347,7 @@ impl<'a> Refiner<'a> {
         for &s in &hits {
             self.cdt.queue_split(s);
         }
-        hits.len()
+        Ok(hits.len())
     }
 
     /// Splits queued segments until none is left (the recursion of Fig. 2 step 8).
@@ -649,6 +655,7 @@ impl<'a> Refiner<'a> {
         let before = self.cdt.pts.len();
         self.refining = true;
         for t in 0..self.cdt.num_slots() as TriId {
+            tick(|| (self.steiner(), self.steiner()))?;
             if self.cdt.alive(t) && self.is_bad(t) {
                 self.push_bad(t);
             }

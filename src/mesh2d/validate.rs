@@ -8,6 +8,19 @@ use super::{TriMesh, NONE};
 use crate::geometry::circumcenter;
 use crate::predicates::{incircle, incircle_fast, orient2d};
 
+/// One step of a check's pass over the triangles, for progress reports and cancel (on a
+/// 1M-triangle mesh the checks take a noticeable part of a second). `pass` numbers the passes,
+/// [`PASSES`] of them; a cancel returns an error text that [`crate::progress::observe`] turns
+/// into the run's `Error::Cancelled`.
+fn tick_pass(m: &TriMesh, pass: usize, t: usize) -> Result<(), String> {
+    let n = m.triangles.len();
+    crate::progress::tick(|| ((pass * n + t) as u64, (PASSES * n) as u64))
+        .map_err(|e| e.to_string())
+}
+
+/// The passes over the triangles a full check makes (for the progress estimate).
+const PASSES: usize = 5;
+
 pub(super) fn validate(m: &TriMesh) -> Result<(), String> {
     if !m.complete {
         // The budget can stop the splits that make segments conforming: the guarantee of
@@ -142,6 +155,7 @@ fn locally_forgiving(m: &TriMesh, skip_segments: bool) -> Result<usize, String> 
         }
     }
     for (t, tri) in m.triangles.iter().enumerate() {
+        tick_pass(m, 3, t)?;
         for i in 0..3 {
             let n = m.neighbors[t][i];
             if n == NONE || (n as usize) < t {
@@ -194,6 +208,7 @@ pub(super) fn validate_structure(m: &TriMesh, adjacency: bool) -> Result<(), Str
         ));
     }
     for (t, tri) in m.triangles.iter().enumerate() {
+        tick_pass(m, 0, t)?;
         if tri.iter().any(|&v| v as usize >= nv) {
             return Err(format!("triangle {t} has a vertex index out of range"));
         }
@@ -230,6 +245,7 @@ pub(super) fn validate_structure(m: &TriMesh, adjacency: bool) -> Result<(), Str
     }
     // Every boundary edge (no neighbour) must be a subsegment: the domain is bounded by segments.
     for (t, tri) in m.triangles.iter().enumerate() {
+        tick_pass(m, 1, t)?;
         for i in 0..3 {
             if m.neighbors[t][i] != NONE {
                 continue;
@@ -251,7 +267,8 @@ pub(super) fn validate_structure(m: &TriMesh, adjacency: bool) -> Result<(), Str
             endpoint[e[0] as usize] = true;
             endpoint[e[1] as usize] = true;
         }
-        for tri in &m.triangles {
+        for (t, tri) in m.triangles.iter().enumerate() {
+            tick_pass(m, 2, t)?;
             for i in 0..3 {
                 let (p, q) = (tri[i], tri[(i + 1) % 3]);
                 if !(endpoint[p as usize] && endpoint[q as usize]) {
@@ -282,8 +299,9 @@ fn check_empty_circles(m: &TriMesh, chains: &Chains) -> Result<(), String> {
         return Ok(());
     }
     let ids: Vec<u32> = (0..nv as u32).collect();
-    let tree = PointTree::new(&m.vertices, &ids);
+    let tree = PointTree::new(&m.vertices, &ids).map_err(|e| e.to_string())?;
     for (t, tri) in m.triangles.iter().enumerate() {
+        tick_pass(m, 4, t)?;
         let [a, b, c] = tri.map(|v| m.vertices[v as usize]);
         let Some(o) = circumcenter(a, b, c) else {
             return Err(format!("triangle {t} has no finite circumcenter"));

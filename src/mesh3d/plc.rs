@@ -263,7 +263,7 @@ fn mesh_plc_in(
     if !m.opts.keep_surface {
         stage(Stage::Slivers, || (m.steiner, m.steiner))?;
         for _round in 0..8 {
-            let faces = m.interior_flat_slivers();
+            let faces = m.interior_flat_slivers()?;
             if faces.is_empty() || !m.complete {
                 break;
             }
@@ -1304,10 +1304,11 @@ impl Mesher<'_> {
 
     /// A subface of each rounding sliver (all four vertices on one facet plane) whose four
     /// neighbours are all in the domain.
-    fn interior_flat_slivers(&self) -> Vec<([u32; 3], u32)> {
+    fn interior_flat_slivers(&self) -> Result<Vec<([u32; 3], u32)>, Error> {
         let inside = |t: u32| !self.tets.is_ghost(t) && self.region_of(t) < UNKNOWN;
         let mut out = Vec::new();
         for t in 0..self.tets.num_slots() as u32 {
+            tick(|| (self.steiner, self.steiner))?;
             if !self.tets.alive(t) || !inside(t) {
                 continue;
             }
@@ -1322,7 +1323,7 @@ impl Mesher<'_> {
                 out.push((fv, fid));
             }
         }
-        out
+        Ok(out)
     }
 
     fn output(&self, plc: &Plc) -> Result<TetMesh, Error> {

@@ -52,6 +52,19 @@ pub(crate) fn check_output(mesh: &TetMesh) -> Result<(), Error> {
 /// first apex, the signs of `orient3d(a, b, c0, c)` along the fan change at most once, and no
 /// later apex lies on `c0`'s half-plane (that would be a second turn). Each fan is walked once
 /// (a bit per tet edge marks it done), so the check costs O(1) per tet edge.
+/// One step of a check's pass over the tets, for progress reports and cancel (on a 1M-tet
+/// mesh the check takes seconds). `pass` numbers the passes over the tets, [`PASSES`] of them;
+/// a cancel returns an error text that [`crate::progress::observe`] turns into the run's
+/// `Error::Cancelled`.
+fn tick_pass(m: &TetMesh, pass: usize, t: usize) -> Result<(), String> {
+    let n = m.tets.len();
+    crate::progress::tick(|| ((pass * n + t) as u64, (PASSES * n) as u64))
+        .map_err(|e| e.to_string())
+}
+
+/// The passes over the tets a full check makes (for the progress estimate).
+const PASSES: usize = 6;
+
 fn check_edge_winding(m: &TetMesh) -> Result<(), String> {
     // Local edge number of the pair of positions (i, j), i < j.
     const EDGE_BIT: [[u8; 4]; 4] = [[0, 1, 2, 4], [1, 0, 8, 16], [2, 8, 0, 32], [4, 16, 32, 0]];
@@ -88,6 +101,7 @@ fn check_edge_winding(m: &TetMesh) -> Result<(), String> {
     let budget = m.tets.len() + 1;
     let (mut apexes, mut back): (Vec<u32>, Vec<u32>) = (Vec::new(), Vec::new());
     for t0 in 0..m.tets.len() as u32 {
+        tick_pass(m, 4, t0 as usize)?;
         let tv = m.tets[t0 as usize];
         for (k, e) in EDGES.iter().enumerate() {
             if done[t0 as usize] & (1 << k) != 0 {
@@ -220,7 +234,8 @@ fn check_mesh(m: &TetMesh) -> Result<(), String> {
 /// Every subsegment is an edge of some tetrahedron.
 fn check_subsegments(m: &TetMesh) -> Result<(), String> {
     let mut edges: crate::hash::FastSet<[u32; 2]> = crate::hash::FastSet::default();
-    for tv in &m.tets {
+    for (t, tv) in m.tets.iter().enumerate() {
+        tick_pass(m, 5, t)?;
         for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
             edges.insert([tv[i].min(tv[j]), tv[i].max(tv[j])]);
         }
@@ -278,6 +293,7 @@ fn check_tets(m: &TetMesh) -> Result<(), String> {
     let (nv, nt) = (m.vertices.len(), m.tets.len());
     let p = |v: u32| m.vertices[v as usize];
     for (t, tv) in m.tets.iter().enumerate() {
+        tick_pass(m, 0, t)?;
         if tv.iter().any(|&v| v as usize >= nv) {
             return Err(format!("tet {t} {tv:?} has a vertex index out of range"));
         }
@@ -289,6 +305,7 @@ fn check_tets(m: &TetMesh) -> Result<(), String> {
         }
     }
     for (t, tv) in m.tets.iter().enumerate() {
+        tick_pass(m, 1, t)?;
         #[allow(clippy::needless_range_loop)] // i indexes the neighbours and FACE alike
         for i in 0..4 {
             let n = m.neighbors[t][i];
@@ -352,6 +369,7 @@ impl FaceIndex {
         };
         let mut start = vec![0u32; nv + 1];
         for t in 0..m.tets.len() {
+            tick_pass(m, 2, t)?;
             for i in 0..4 {
                 if recorded(t, i) {
                     start[sorted(t, i)[0] as usize + 1] += 1;
@@ -364,6 +382,7 @@ impl FaceIndex {
         let mut fill = start.clone();
         let mut keys = vec![0u64; start[nv] as usize];
         for t in 0..m.tets.len() {
+            tick_pass(m, 3, t)?;
             for i in 0..4 {
                 if recorded(t, i) {
                     let f = sorted(t, i);
@@ -375,6 +394,7 @@ impl FaceIndex {
         }
         drop(fill);
         for v in 0..nv {
+            tick_pass(m, 3, m.tets.len())?;
             let group = &mut keys[start[v] as usize..start[v + 1] as usize];
             group.sort_unstable();
             if let Some(w) = group.windows(2).find(|w| w[0] == w[1]) {
@@ -536,6 +556,7 @@ fn check_empty_spheres(m: &TetMesh) -> Result<(), String> {
     let grid = Grid3::new(&m.vertices);
     let p = |v: u32| m.vertices[v as usize];
     for (t, tv) in m.tets.iter().enumerate() {
+        tick_pass(m, 5, t)?;
         let c = tv.map(p);
         let [a, b, cc, d] = c;
         let query = sphere_query(c);

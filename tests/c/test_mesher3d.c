@@ -307,6 +307,18 @@ static double check_mesh(const view *v, double volume, int all_faces_boundary, c
   CHECK(v->stats.min_dihedral > 0 && v->stats.min_dihedral <= v->stats.max_dihedral &&
             v->stats.max_dihedral < 180,
         "%s: dihedral range %g..%g", what, v->stats.min_dihedral, v->stats.max_dihedral);
+  /* The sliver counts: nested, and some tet is below k degrees exactly when the smallest
+     dihedral angle is. */
+  CHECK(v->stats.tets_below_5 <= v->stats.tets_below_10 &&
+            v->stats.tets_below_10 <= v->stats.tets_below_15 && v->stats.tets_below_15 <= v->nt,
+        "%s: sliver counts %zu, %zu, %zu of %zu", what, v->stats.tets_below_5,
+        v->stats.tets_below_10, v->stats.tets_below_15, v->nt);
+  CHECK((v->stats.tets_below_5 > 0) == (v->stats.min_dihedral < 5) &&
+            (v->stats.tets_below_10 > 0) == (v->stats.min_dihedral < 10) &&
+            (v->stats.tets_below_15 > 0) == (v->stats.min_dihedral < 15),
+        "%s: sliver counts %zu, %zu, %zu but smallest dihedral angle %g", what,
+        v->stats.tets_below_5, v->stats.tets_below_10, v->stats.tets_below_15,
+        v->stats.min_dihedral);
   return max_re;
 }
 

@@ -44,6 +44,7 @@ use crate::error::Error;
 use crate::geometry::{dist2_3, tet_circumcenter, tet_dihedral_range, tet_radius_edge};
 use crate::mesh3d::store::{Located, GHOST};
 use crate::predicates::{in_diametral_ball_seg3, in_diametral_ball_tri, insphere, orient3d};
+use crate::progress::tick;
 
 /// The minimum dihedral angle target used with a radius-edge bound when none is given
 /// (degrees): TetGen's `-q` leaves it at 0 (no target); idmesh removes tetrahedra below 15°
@@ -65,6 +66,9 @@ const BUDGET_FACTOR: u64 = 2;
 
 /// Rounds of sliver collection (each round treats every sliver found at its start).
 const MAX_ROUNDS: u32 = 64;
+
+/// Tetrahedra to treat, with their vertices when found (a tet changed since is skipped).
+type Slivers = Vec<(u32, [u32; 4])>;
 
 /// What the sliver removal pass did, for the `-V` progress lines.
 #[derive(Default, Debug)]
@@ -96,10 +100,11 @@ impl Mesher<'_> {
 
     /// The tets inside the domain missing the target that the pass treats, and how many others
     /// miss it but are exempt (next to a small input angle).
-    fn collect_slivers(&self, target: f64) -> (Vec<(u32, [u32; 4])>, u64) {
+    fn collect_slivers(&self, target: f64) -> Result<(Slivers, u64), Error> {
         let mut out = Vec::new();
         let mut exempt = 0;
         for t in 0..self.tets.num_slots() as u32 {
+            tick(|| (self.steiner, self.steiner))?;
             if !self.tets.alive(t) || self.tets.is_ghost(t) || self.region_of(t) >= UNKNOWN {
                 continue;
             }
@@ -114,7 +119,7 @@ impl Mesher<'_> {
                 out.push((t, vs));
             }
         }
-        (out, exempt)
+        Ok((out, exempt))
     }
 
     /// Removes the slivers (see the module docs); a no-op without a target.
@@ -127,7 +132,7 @@ impl Mesher<'_> {
 
         let mut exhausted = false;
         'rounds: for round in 0..MAX_ROUNDS {
-            let (list, _) = self.collect_slivers(target);
+            let (list, _) = self.collect_slivers(target)?;
             if list.is_empty() {
                 break;
             }
@@ -157,7 +162,7 @@ impl Mesher<'_> {
                 break; // every demand was dropped (size floor): nothing more to gain
             }
         }
-        let (left, exempt) = self.collect_slivers(target);
+        let (left, exempt) = self.collect_slivers(target)?;
         counts.left = left.len() as u64;
         counts.exempt = exempt;
         if exhausted {

@@ -8,7 +8,8 @@
 # -pq1.414; the smallest one also with -pq1.414a<volume> (its volume bound checked), and that
 # mesh refined with -rq1.414a<volume/4>.
 set -euo pipefail
-libdir="$1"; checker="$2"; shift 2
+# Absolute paths: the meshing runs in a scratch directory.
+libdir=$(readlink -f "$1"); checker=$(readlink -f "$2"); shift 2
 tetgen=/usr/bin/tetgen
 data=""
 prefix=""

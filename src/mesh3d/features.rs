@@ -119,10 +119,10 @@ fn well_spread_triple(plc: &Plc, verts: &[u32], first: [u32; 3]) -> [u32; 3] {
 
 /// `q` moved along coordinate axis `k` onto the plane of the non-collinear triple `t`, to a
 /// floating-point point next to it: the exact plane meets the line through the result along
-/// axis `k` within one floating-point step of it ([`within_ulp_of_plane`]), checked with exact
-/// orientations while walking from the floating-point solution (a few steps at most for a
-/// well-conditioned `t`). The projection dropping axis `k` is `q`'s own. `None` when no such
-/// point is found within the walk's budget (the plane nearly parallel to axis `k`).
+/// axis `k` within one floating-point step of it ([`within_ulp_of_plane`]), found from the
+/// floating-point solution with exact orientations (a search that doubles its steps, then a
+/// bisection). The projection dropping axis `k` is `q`'s own. `None` when the plane is
+/// parallel to axis `k` in floating point or no finite value is across it.
 pub(crate) fn onto_plane(t: [[f64; 3]; 3], q: [f64; 3], k: usize) -> Option<[f64; 3]> {
     use crate::geometry::next_float;
     use crate::predicates::orient3d;
@@ -130,27 +130,55 @@ pub(crate) fn onto_plane(t: [[f64; 3]; 3], q: [f64; 3], k: usize) -> Option<[f64
     let side = |z: f64| {
         let mut x = s;
         x[k] = z;
-        orient3d(t[0], t[1], t[2], x).total_cmp(&0.0)
+        // partial_cmp: an exact zero may come back as -0.0.
+        orient3d(t[0], t[1], t[2], x)
+            .partial_cmp(&0.0)
+            .unwrap_or(std::cmp::Ordering::Equal)
     };
     let start = side(s[k]);
     if start.is_eq() {
         return Some(s);
     }
     // orient3d is linear and monotone in the k-th coordinate: the plane is crossed in one
-    // direction only, at the first step whose side differs.
-    for up in [true, false] {
-        let mut z = s[k];
-        for _ in 0..64 {
-            let next = next_float(z, up);
-            if !next.is_finite() {
+    // direction only. Steps doubling from one floating-point step find a value across it
+    // (the solution's error is relative to the other coordinates, many steps of a coordinate
+    // near zero), then bisection narrows the two to neighbours.
+    let close = |mut near: f64, mut far: f64| {
+        for _ in 0..2100 {
+            let mid = near + (far - near) * 0.5;
+            if mid == near || mid == far || !mid.is_finite() {
                 break;
             }
-            if side(next) != start {
+            if side(mid) == start {
+                near = mid;
+            } else {
+                far = mid;
+            }
+        }
+        far
+    };
+    // The crossing is far closer than the input's own magnitude: the search stops there
+    // (beyond, orientations of huge coordinates could overflow).
+    let reach = t
+        .iter()
+        .chain(std::iter::once(&s))
+        .flatten()
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    for up in [true, false] {
+        let mut near = s[k];
+        let mut d = (next_float(s[k], up) - s[k]).abs();
+        for _ in 0..1100 {
+            let far = if up { s[k] + d } else { s[k] - d };
+            if !far.is_finite() || d > reach {
+                break;
+            }
+            if side(far) != start {
                 let mut x = s;
-                x[k] = next;
+                x[k] = close(near, far);
                 return Some(x);
             }
-            z = next;
+            near = far;
+            d *= 2.0;
         }
     }
     None

@@ -169,6 +169,33 @@ pub fn tri_circumcenter3(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Option<[f64; 
     p.is_finite().then(|| p.to_array())
 }
 
+/// `q` moved along coordinate axis `k` onto the plane of `t` (floating point: its `k`-th
+/// coordinate solved from the plane through `t[0]` with the normal of `t`); `None` when the
+/// plane is parallel to axis `k` (in floating point) or the result overflows. The other two
+/// coordinates are `q`'s own, so the point projects (dropping axis `k`) exactly where `q` does.
+pub fn along_axis_onto_plane(t: [[f64; 3]; 3], q: [f64; 3], k: usize) -> Option<[f64; 3]> {
+    let [a, b, c] = t;
+    let n = (v3(b) - v3(a)).cross(v3(c) - v3(a)).to_array();
+    if n[k] == 0.0 {
+        return None;
+    }
+    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+    let mut s = q;
+    s[k] = a[k] - (n[i] * (q[i] - a[i]) + n[j] * (q[j] - a[j])) / n[k];
+    s[k].is_finite().then_some(s)
+}
+
+/// The next floating-point number above (`up`) or below `x`, a finite number (`f64::next_up`
+/// and `next_down` are newer than the crate's minimum Rust version).
+pub fn next_float(x: f64, up: bool) -> f64 {
+    if x == 0.0 {
+        let tiny = f64::from_bits(1);
+        return if up { tiny } else { -tiny };
+    }
+    let bits = x.to_bits();
+    f64::from_bits(if (x > 0.0) == up { bits + 1 } else { bits - 1 })
+}
+
 /// Area of the 3D triangle `abc`.
 pub fn tri_area3(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
     0.5 * (v3(b) - v3(a)).cross(v3(c) - v3(a)).length()

@@ -49,6 +49,7 @@
 //! the input, as TetGen's is; the mesh's vertices are the moved points.
 
 use crate::error::{catch_panic, Error};
+use crate::geometry::next_float;
 use crate::hash::FastMap as HashMap;
 use crate::input3d::{Facet, Plc};
 use crate::predicates::{orient2d, orient3d};
@@ -613,15 +614,7 @@ fn snap_onto(t: [[f64; 3]; 3], q: [f64; 3]) -> Option<[f64; 3]> {
         .cross(DVec3::from_array(c) - DVec3::from_array(a))
         .to_array();
     let k = (0..3).max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))?;
-    if n[k] == 0.0 {
-        return None;
-    }
-    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
-    let mut s = q;
-    s[k] = a[k] - (n[i] * (q[i] - a[i]) + n[j] * (q[j] - a[j])) / n[k];
-    if !s[k].is_finite() {
-        return None;
-    }
+    let mut s = crate::geometry::along_axis_onto_plane(t, q, k)?;
     let solved = s[k];
     let (mut up, mut down) = (solved, solved);
     for step in 0..17 {
@@ -641,17 +634,6 @@ fn snap_onto(t: [[f64; 3]; 3], q: [f64; 3]) -> Option<[f64; 3]> {
         }
     }
     None
-}
-
-/// The next floating-point number above (`up`) or below `x`, a finite number (`f64::next_up`
-/// and `next_down` are newer than the crate's minimum Rust version).
-fn next_float(x: f64, up: bool) -> f64 {
-    if x == 0.0 {
-        let tiny = f64::from_bits(1);
-        return if up { tiny } else { -tiny };
-    }
-    let bits = x.to_bits();
-    f64::from_bits(if (x > 0.0) == up { bits + 1 } else { bits - 1 })
 }
 
 /// Whether every vertex and hole seed of `facet` lies exactly on one plane (`points` as moved).

@@ -45,7 +45,8 @@ pub(crate) struct FacetInfo {
     pub outline: Outline,
     /// Input vertices of the facet.
     pub vertices: Vec<u32>,
-    /// Three non-collinear input vertices spanning the facet's plane.
+    /// Three non-collinear input vertices spanning the facet's plane, well spread (see
+    /// [`well_spread_triple`]).
     pub plane: [u32; 3],
 }
 
@@ -87,6 +88,115 @@ pub(crate) fn dominant_axis(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Option<usi
     best.1
 }
 
+/// A triple of `verts` spanning their plane about as well as any: `first[0]`, the vertex
+/// farthest from it, and the vertex farthest from the line through these two (floating-point
+/// choices, checked exactly non-collinear; `first` otherwise). The first non-collinear
+/// triple may be a needle (a triangulated surface's sliver triangles), whose floating-point
+/// normal is far from the facet's: points constructed on the plane ([`onto_plane`]) need a
+/// well-conditioned one.
+fn well_spread_triple(plc: &Plc, verts: &[u32], first: [u32; 3]) -> [u32; 3] {
+    let p = |v: u32| glam::DVec3::from(plc.points[v as usize]);
+    let a = first[0];
+    let far = |key: &dyn Fn(u32) -> f64| {
+        verts
+            .iter()
+            .copied()
+            .max_by(|&x, &y| key(x).total_cmp(&key(y)))
+    };
+    let Some(b) = far(&|v| p(v).distance_squared(p(a))) else {
+        return first;
+    };
+    let Some(c) = far(&|v| (p(b) - p(a)).cross(p(v) - p(a)).length_squared()) else {
+        return first;
+    };
+    let pt = |v: u32| plc.points[v as usize];
+    if dominant_axis(pt(a), pt(b), pt(c)).is_some() {
+        [a, b, c]
+    } else {
+        first
+    }
+}
+
+/// `q` moved along coordinate axis `k` onto the plane of the non-collinear triple `t`, to a
+/// floating-point point next to it: the exact plane meets the line through the result along
+/// axis `k` within one floating-point step of it ([`within_ulp_of_plane`]), found from the
+/// floating-point solution with exact orientations (a search that doubles its steps, then a
+/// bisection). The projection dropping axis `k` is `q`'s own. `None` when the plane is
+/// parallel to axis `k` in floating point or no finite value is across it.
+pub(crate) fn onto_plane(t: [[f64; 3]; 3], q: [f64; 3], k: usize) -> Option<[f64; 3]> {
+    use crate::geometry::next_float;
+    use crate::predicates::orient3d;
+    let s = crate::geometry::along_axis_onto_plane(t, q, k)?;
+    let side = |z: f64| {
+        let mut x = s;
+        x[k] = z;
+        // partial_cmp: an exact zero may come back as -0.0.
+        orient3d(t[0], t[1], t[2], x)
+            .partial_cmp(&0.0)
+            .unwrap_or(std::cmp::Ordering::Equal)
+    };
+    let start = side(s[k]);
+    if start.is_eq() {
+        return Some(s);
+    }
+    // orient3d is linear and monotone in the k-th coordinate: the plane is crossed in one
+    // direction only. Steps doubling from one floating-point step find a value across it
+    // (the solution's error is relative to the other coordinates, many steps of a coordinate
+    // near zero), then bisection narrows the two to neighbours.
+    let close = |mut near: f64, mut far: f64| {
+        for _ in 0..2100 {
+            let mid = near + (far - near) * 0.5;
+            if mid == near || mid == far || !mid.is_finite() {
+                break;
+            }
+            if side(mid) == start {
+                near = mid;
+            } else {
+                far = mid;
+            }
+        }
+        far
+    };
+    // The crossing is far closer than the input's own magnitude: the search stops there
+    // (beyond, orientations of huge coordinates could overflow).
+    let reach = t
+        .iter()
+        .chain(std::iter::once(&s))
+        .flatten()
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    for up in [true, false] {
+        let mut near = s[k];
+        let mut d = (next_float(s[k], up) - s[k]).abs();
+        for _ in 0..1100 {
+            let far = if up { s[k] + d } else { s[k] - d };
+            if !far.is_finite() || d > reach {
+                break;
+            }
+            if side(far) != start {
+                let mut x = s;
+                x[k] = close(near, far);
+                return Some(x);
+            }
+            near = far;
+            d *= 2.0;
+        }
+    }
+    None
+}
+
+/// Whether the plane of `t` meets the line through `p` along axis `k` within one
+/// floating-point step of `p` (between `p`'s two neighbours along that axis, ends included):
+/// exact orientations. What [`onto_plane`] guarantees for the points it makes.
+pub(crate) fn within_ulp_of_plane(t: [[f64; 3]; 3], p: [f64; 3], k: usize) -> bool {
+    let side = |up: bool| {
+        let mut x = p;
+        x[k] = crate::geometry::next_float(p[k], up);
+        crate::predicates::orient3d(t[0], t[1], t[2], x)
+    };
+    let (lo, hi) = (side(false), side(true));
+    lo == 0.0 || hi == 0.0 || (lo < 0.0) != (hi < 0.0)
+}
+
 /// The projection that drops coordinate `axis` (cyclic order keeps orientation consistent).
 #[inline]
 pub(crate) fn proj(p: [f64; 3], axis: usize) -> [f64; 2] {
@@ -98,6 +208,17 @@ pub(crate) fn proj(p: [f64; 3], axis: usize) -> [f64; 2] {
 }
 
 impl Features {
+    /// `q` (a point meant for facet `fid`) moved along the facet's projection axis onto its
+    /// plane ([`onto_plane`]): the facet mesh sees the same projected point, and the point is
+    /// within one floating-point step of the plane. A construction from corners that are
+    /// themselves rounded (a subface's circumcentre) tilts with their errors, and points made
+    /// from such points drift further off at each step (issue 12: triceratops.off, 56 ulps
+    /// after four generations). `q` itself when the walk fails (see [`onto_plane`]).
+    pub fn onto_facet_plane(&self, fid: u32, q: [f64; 3], points: &[[f64; 3]]) -> [f64; 3] {
+        let f = &self.facets[fid as usize];
+        onto_plane(f.plane.map(|v| points[v as usize]), q, f.axis).unwrap_or(q)
+    }
+
     /// Collects input edges (free segments and facet loop edges, each once) and facets.
     pub fn new(plc: &Plc) -> Result<Features, String> {
         let n = plc.points.len();
@@ -141,6 +262,7 @@ impl Features {
                     "facet {fi} is degenerate (its vertices are collinear)"
                 ));
             };
+            let plane = well_spread_triple(plc, &verts, plane);
             let mut loops = Vec::new();
             for poly in &f.polygons {
                 match poly.len() {
@@ -418,4 +540,72 @@ fn coplanar_groups(points: &[[f64; 3]], facets: &[FacetInfo], edges: &[InputEdge
     (0..facets.len() as u32)
         .map(|f| root(&mut parent, f))
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{onto_plane, proj, within_ulp_of_plane};
+    use crate::geometry::{next_float, tri_circumcenter3};
+
+    /// A slanted plane through three input-like points (none of its floating-point points need
+    /// be exactly on it).
+    const T: [[f64; 3]; 3] = [
+        [1.449825, -3.263366, -1.31193],
+        [1.49884, -3.274333, -1.574848],
+        [1.357913, -3.231977, -1.413651],
+    ];
+
+    fn axis() -> usize {
+        super::dominant_axis(T[0], T[1], T[2]).unwrap()
+    }
+
+    #[test]
+    fn points_moved_onto_a_slanted_plane_are_within_one_step_and_keep_their_projection() {
+        let k = axis();
+        let mut checked = 0;
+        for i in 0..40 {
+            for j in 0..40 {
+                let u = i as f64 / 39.0;
+                let v = j as f64 / 39.0 * (1.0 - u);
+                let mut q =
+                    [0, 1, 2].map(|c| T[0][c] + u * (T[1][c] - T[0][c]) + v * (T[2][c] - T[0][c]));
+                // Off the plane by far more than rounding, along the axis and across it.
+                q[k] += 1e-9 * (i as f64 - 20.0);
+                let r = onto_plane(T, q, k).expect("a point on the plane");
+                assert_eq!(proj(r, k), proj(q, k));
+                assert!(within_ulp_of_plane(T, r, k), "{r:?}");
+                // Four steps off along the axis is more than one step from the plane.
+                let mut far = r;
+                for _ in 0..4 {
+                    far[k] = next_float(far[k], true);
+                }
+                assert!(!within_ulp_of_plane(T, far, k), "{far:?}");
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, 1600);
+    }
+
+    #[test]
+    fn circumcentres_of_needle_subfaces_leave_the_plane_and_are_brought_back() {
+        // Corners on the plane (each within a step of it), two of them very close: the plane
+        // of the three rounded corners is tilted, and so is their circumcentre's position.
+        let k = axis();
+        let on = |u: f64, v: f64| {
+            let q = [0, 1, 2].map(|c| T[0][c] + u * (T[1][c] - T[0][c]) + v * (T[2][c] - T[0][c]));
+            onto_plane(T, q, k).unwrap()
+        };
+        let mut off = 0;
+        for i in 1..200 {
+            let d = 1e-4 * i as f64;
+            let (a, b, c) = (on(0.3, 0.0), on(0.3 + 1e-3, 0.0), on(0.31, d));
+            let cc = tri_circumcenter3(a, b, c).unwrap();
+            if !within_ulp_of_plane(T, cc, k) {
+                off += 1;
+            }
+            assert!(within_ulp_of_plane(T, onto_plane(T, cc, k).unwrap(), k));
+        }
+        // The construction alone leaves the plane for a good share of them.
+        assert!(off > 20, "{off}");
+    }
 }

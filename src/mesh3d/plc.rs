@@ -273,6 +273,7 @@ fn mesh_plc_in(
             m.run()?;
         }
     }
+    super::validate::check_facet_points(&m.feat, &m.pts, m.num_input)?;
     if let Some(s) = frame {
         if !m.snap_to_frame(s) {
             return Ok((None, m.steiner));
@@ -793,6 +794,10 @@ impl Mesher<'_> {
                 // face.
                 cc = centroid;
             }
+        }
+        let centroid = self.feat.onto_facet_plane(fid, centroid, &self.pts);
+        if cc != centroid {
+            cc = self.feat.onto_facet_plane(fid, cc, &self.pts);
         }
         let m = self.new_vertex(cc)?;
         let mut tried_centroid = cc == centroid;

@@ -13,6 +13,12 @@
 //!   triangles) joined to a point strictly inside the group's kernel is a positive tet, and
 //!   the kernel has interior right next to `s`, so such a point exists; it is picked with
 //!   exact orientation tests ([`Tets::replace`] checks the result again).
+//! * In floating point the kernel can still be empty: where nearly coplanar facets meet (a
+//!   fan of triangles at 179.99°), the point moved off for one split point of their edge sits
+//!   in a wedge a few rounding errors thick and flattens the next split point's tets. Such a
+//!   point is left as it is and tried again after the others, once the moved points have
+//!   been taken out where possible and flips have reshaped its star ([`RETRY_ROUNDS`]
+//!   rounds; then the error).
 //!
 //! The moved points are then removed where their star can be re-coned from one of its own
 //! vertices, so that points stay only where the surface needs them (a Schönhardt-like
@@ -35,6 +41,10 @@ use crate::predicates::{in_diametral_ball_seg3, in_lens_tri, incircle, orient2d,
 /// points in at a distance that still makes good tets with the subface (radius-edge about 1.1
 /// at half the circumradius above its centre) and keeps them from creeping onto it.
 const LENS_HEIGHT: f64 = 0.5;
+
+/// Rounds of retrying the boundary Steiner points that could not be taken off the surface at
+/// first (see [`Mesher::keep_input_surface`]).
+const RETRY_ROUNDS: usize = 4;
 
 /// A facet's triangulation around a suppressed point: the facet and its new triangles
 /// (counter-clockwise in the facet's projection), with the old subfaces they replace.
@@ -66,11 +76,32 @@ impl Mesher<'_> {
             })
             .collect();
         let mut moved = Vec::new();
-        for s in steiner {
-            if self.tets.vertex_tet(s) == NONE {
-                continue; // outside the domain (on a facet between holes, say)
+        let mut pending = steiner;
+        let mut retried = 0;
+        for round in 0..=RETRY_ROUNDS {
+            let mut stuck = Vec::new();
+            let mut why = None;
+            for s in pending {
+                if self.tets.vertex_tet(s) == NONE {
+                    continue; // outside the domain (on a facet between holes, say)
+                }
+                if let Err(e) = self.suppress(s, &mut moved)? {
+                    stuck.push(s);
+                    why = Some(e);
+                }
             }
-            self.suppress(s, &mut moved)?;
+            let Some(e) = why else { break };
+            if round == RETRY_ROUNDS {
+                return Err(e);
+            }
+            // A group's wedge can be too thin for any point: a neighbour's point, moved just
+            // off the surface into its own thin wedge, flattened the tets around it. Taking
+            // the moved points out again and flipping reshape the star; then the point is
+            // tried again.
+            self.remove_moved_points(&moved);
+            self.delaunay_flips();
+            retried += stuck.len();
+            pending = stuck;
         }
         // Flips change the stars of the moved points, so a point that could not go may go
         // after them.
@@ -85,8 +116,8 @@ impl Mesher<'_> {
         }
         if self.opts.verbose {
             eprintln!(
-                "idmesh: -Y: {} boundary Steiner points taken off the surface, {} interior points \
-                 left, {flips} flips",
+                "idmesh: -Y: {} boundary Steiner points taken off the surface ({retried} tried \
+                 again), {} interior points left, {flips} flips",
                 moved.len(),
                 moved
                     .iter()
@@ -98,8 +129,9 @@ impl Mesher<'_> {
     }
 
     /// Suppresses boundary Steiner point `s`; the points it moves into the domain are added
-    /// to `moved`.
-    fn suppress(&mut self, s: u32, moved: &mut Vec<u32>) -> Result<(), Error> {
+    /// to `moved`. `Ok(Err(..))`, with nothing changed, when some group of its tets has no
+    /// point that sees all of the group (to be tried again after the others).
+    fn suppress(&mut self, s: u32, moved: &mut Vec<u32>) -> Result<Result<(), Error>, Error> {
         let at = self.pts[s as usize];
         let fail = |why: String| {
             Error::Internal(format!(
@@ -187,12 +219,18 @@ impl Mesher<'_> {
         let mut new_tets: Vec<[u32; 4]> = Vec::new();
         let mut new_region: Vec<u32> = Vec::new();
         let mut apexes = Vec::new();
+        let mut chosen = Vec::with_capacity(groups.len());
         for g in &groups {
             let floor = self.group_floor(g, &patches).map_err(fail)?;
             let link: Vec<[u32; 4]> = g.tets.iter().map(|&i| self.tets.verts(star[i])).collect();
-            let q = self
-                .best_apex(s, &link, &floor)
-                .ok_or_else(|| fail("no point of its wedge sees the whole group".into()))?;
+            let Some(q) = self.best_apex(s, &link, &floor) else {
+                return Ok(Err(fail(
+                    "no point of its wedge sees the whole group".into(),
+                )));
+            };
+            chosen.push((floor, link, q));
+        }
+        for (g, (floor, link, q)) in groups.iter().zip(chosen) {
             let v = self.new_vertex(q)?;
             apexes.push(v);
             let reg = self.region_of(star[g.tets[0]]);
@@ -247,7 +285,7 @@ impl Mesher<'_> {
         if let Some(f) = self.feat.on_feature.get_mut(s as usize) {
             *f = false;
         }
-        Ok(())
+        Ok(Ok(()))
     }
 
     /// The new triangles of facet `fid` around `s` (its subfaces `old` there), without `s`:

@@ -10,20 +10,22 @@
  * Debian's libtet1.5 byte for byte). face2tetlist and edge2tetlist (1.6) share the storage of
  * adjtetlist and edgeadjtetlist (1.5).
  *
- * Switches (one parser, shared with `idmesh tetgen`):
- *   supported: p q[ratio] a[volume] a A S[n] Y M z f e n nn N E F B I d C Q V k g, and D, J
- *              (accepted: idmesh output is always conforming Delaunay and keeps all vertices);
- *              q/0 (a zero minimum dihedral angle); X (accepted: idmesh is always exact);
+ * Switches (one parser, shared with `idmesh tetgen`; README "Switching from TetGen" has the
+ * details of each):
+ *   honoured:  p q[ratio][/angle] a[volume] a A S[n] Y M z f e n nn N E F B I d C Q V k g c T
+ *              O[level][/scheme] (opt-in; scheme bit 4, vertex insertion/deletion, accepted
+ *              and not done) o/<angle>; D, J, X accepted (idmesh output is always conforming
+ *              Delaunay, keeps all vertices, is always exact);
  *              r (tetrahedronlist, tetrahedronattributelist, tetrahedronvolumelist with a,
  *              trifacelist + trifacemarkerlist: the given mesh's boundary and region faces are
  *              remeshed with its points kept, not refined in place); i (addin's points);
  *              m (pointmtrlist of bgmin with its tetrahedra, else of in: 1 size per point,
  *              interpolated linearly); o2 (10-node tetrahedra, TetGen 1.5's node order).
- *   refused:   every other letter (c T w R O o/<angle> s l L b v G K j, p<tolerance>,
- *              q<ratio>/<angle> with a nonzero angle): tetrahedralize throws 10 and the
- *              message (printed unless Q, and in idm_last_error()) names the switch.
- * Input refused (throw 10, message says which): facet and segment constraints, anisotropic
- *   metrics (numberofpointmtrs other than 1).
+ *   refused:   every other letter (w R s l L b v G K j, p<tolerance>): tetrahedralize throws
+ *              10 and the message (printed unless Q, and in idm_last_error()) names the switch.
+ * Input honoured: facetconstraintlist and segmentconstraintlist (when refining), tetunsuitable.
+ * Input refused (throw 10, message says which): anisotropic metrics (numberofpointmtrs other
+ *   than 1).
  * Input edges (edgelist + edgemarkerlist, e.g. from load_edge) are segments of the PLC, as in
  *   TetGen. load_vtk reads legacy ASCII VTK surfaces; load_pbc returns false (TetGen 1.5/1.6
  *   implement it nowhere: tetgenio has no periodic-boundary fields).

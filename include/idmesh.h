@@ -537,7 +537,8 @@ typedef struct idm_options3d {
   int32_t optimize_level;
   /**
    * The optimisation's operations (TetGen's `-O<level>/<scheme>`), bits: 1 flips, 2 vertex
-   * smoothing, 4 vertex insertion/deletion (accepted, not done); 0 to 7. Default 7.
+   * smoothing, 4 sliver splitting by new points (idmesh's Delaunay sliver removal, run also
+   * without `radius_edge`, aiming at 180 minus `optimize_max_dihedral`); 0 to 7. Default 7.
    */
   int32_t optimize_scheme;
   /**
@@ -737,8 +738,8 @@ typedef struct idm_tetgen_switches {
    */
   int32_t optimize_level;
   /**
-   * `O<level>/<scheme>`: the optimisation's operations, bits 1 flips, 2 smoothing, 4 vertex
-   * insertion/deletion (not done); 7 when not given.
+   * `O<level>/<scheme>`: the optimisation's operations, bits 1 flips, 2 smoothing, 4 sliver
+   * splitting by new points (idmesh's Delaunay sliver removal); 7 when not given.
    */
   int32_t optimize_scheme;
   /**

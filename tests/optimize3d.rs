@@ -277,3 +277,50 @@ fn command_line_o_switches() {
     ));
     assert!(!out.contains("no longer Delaunay"), "{out}");
 }
+
+/// Scheme bit 4 (TetGen splits slivers by new points) without quality bounds: idmesh runs its
+/// Delaunay sliver removal, aiming at 180 minus the `o/` target. The mesh stays Delaunay (the
+/// full `validate()`, empty circumspheres included) with every tetrahedron within the target
+/// except those next to a small input angle (none here), and without bit 4 no point is added.
+#[test]
+fn scheme_bit_4_removes_slivers_without_quality_bounds_and_keeps_the_mesh_delaunay() {
+    let cylinder = prism_plc(
+        &regular_polygon(24, 1.0),
+        None,
+        0.0,
+        0.4,
+        &Frame::identity(),
+    );
+    let bare = Options3 {
+        max_steiner: Some(100_000),
+        ..Options3::default()
+    };
+    let plain = tetrahedralize(&cylinder, &bare).unwrap();
+    let s0 = plain.stats();
+    assert!(s0.tets_below[2] > 0, "the test needs slivers: {s0:?}");
+    let with = |scheme: u32, max: Option<f64>| {
+        let o = Options3 {
+            optimize_level: 1,
+            optimize_scheme: Some(scheme),
+            optimize_max_dihedral: max,
+            ..bare.clone()
+        };
+        tetrahedralize(&cylinder, &o).unwrap()
+    };
+    for (max, target) in [(None, 15.0), (Some(160.0), 20.0)] {
+        let m = with(4, max);
+        assert!(
+            !m.optimized,
+            "bit 4 alone makes no flips and moves no vertex"
+        );
+        m.validate().unwrap();
+        let s = m.stats();
+        assert!(
+            s.min_dihedral >= target && s.max_dihedral <= 180.0 - target,
+            "O1/4 with o/{max:?}: {s:?}"
+        );
+        assert!(m.vertices.len() > plain.vertices.len());
+    }
+    // Flips and smoothing only: no vertex added.
+    assert_eq!(with(3, None).vertices.len(), plain.vertices.len());
+}

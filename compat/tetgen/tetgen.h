@@ -13,8 +13,8 @@
  * Switches (one parser, shared with `idmesh tetgen`; README "Switching from TetGen" has the
  * details of each):
  *   honoured:  p q[ratio][/angle] a[volume] a A S[n] Y M z f e n nn N E F B I d C Q V k g c T
- *              O[level][/scheme] (opt-in; scheme bit 4, vertex insertion/deletion, accepted
- *              and not done) o/<angle>; D, J, X accepted (idmesh output is always conforming
+ *              O[level][/scheme] (opt-in; scheme bit 4, sliver splitting, is idmesh's
+ *              Delaunay sliver removal) o/<angle>; D, J, X accepted (idmesh output is always conforming
  *              Delaunay, keeps all vertices, is always exact);
  *              r (tetrahedronlist, tetrahedronattributelist, tetrahedronvolumelist with a,
  *              trifacelist + trifacemarkerlist: the given mesh's boundary and region faces are

@@ -103,7 +103,8 @@ pub struct idm_options3d {
     /// 0.2.0, like the two fields below: a caller's older struct gets the defaults.
     pub optimize_level: i32,
     /// The optimisation's operations (TetGen's `-O<level>/<scheme>`), bits: 1 flips, 2 vertex
-    /// smoothing, 4 vertex insertion/deletion (accepted, not done); 0 to 7. Default 7.
+    /// smoothing, 4 sliver splitting by new points (idmesh's Delaunay sliver removal, run also
+    /// without `radius_edge`, aiming at 180 minus `optimize_max_dihedral`); 0 to 7. Default 7.
     pub optimize_scheme: i32,
     /// The optimisation's maximum dihedral angle target, degrees (TetGen's `-o/<angle>`):
     /// tetrahedra with a dihedral angle above it or below 180 minus it are worked on. Above 0

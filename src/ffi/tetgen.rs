@@ -96,8 +96,8 @@ pub struct idm_tetgen_switches {
     /// `O<level>`: mesh optimisation passes (flips and smoothing; the mesh is then not
     /// Delaunay), 0 to 10; 0 when `O` is not given (idmesh's default: no optimisation).
     pub optimize_level: i32,
-    /// `O<level>/<scheme>`: the optimisation's operations, bits 1 flips, 2 smoothing, 4 vertex
-    /// insertion/deletion (not done); 7 when not given.
+    /// `O<level>/<scheme>`: the optimisation's operations, bits 1 flips, 2 smoothing, 4 sliver
+    /// splitting by new points (idmesh's Delaunay sliver removal); 7 when not given.
     pub optimize_scheme: i32,
     /// `o/<angle>`: the optimisation's maximum dihedral angle target, degrees; 165 when not
     /// given.

@@ -136,7 +136,9 @@ pub struct Options3 {
     /// optimize module's docs). 0: none, the mesh stays Delaunay. Default: 0.
     pub optimize_level: u32,
     /// The optimisation's operations (TetGen's `-O<level>/<scheme>`), bits: 1 flips, 2 vertex
-    /// smoothing, 4 vertex insertion and deletion (accepted, not done). `None`:
+    /// smoothing, 4 sliver splitting by new points (the Delaunay sliver removal, run before the
+    /// flips and smoothing, also without `radius_edge`: it then aims at 180 minus
+    /// `optimize_max_dihedral`). `None`:
     /// [`DEFAULT_SCHEME`] (7). Default: `None`.
     pub optimize_scheme: Option<u32>,
     /// The optimisation's maximum dihedral angle target in degrees (TetGen's `-o/<angle>`):
@@ -310,7 +312,7 @@ fn check_options(opts: &Options3) -> Result<(), Error> {
     if let Some(s) = opts.optimize_scheme.filter(|&s| s > 7) {
         return Err(Error::InvalidOption(format!(
             "optimisation scheme {s} must be from 0 to 7 (bits: 1 flips, 2 smoothing, 4 \
-             vertex insertion/deletion)"
+             sliver splitting)"
         )));
     }
     if let Some(a) = opts.optimize_max_dihedral {

@@ -11,9 +11,10 @@
 //!   subsegment) to the centroid of its link, half way there, or away from the face opposite
 //!   it in the worst tetrahedron of its star.
 //!
-//! Scheme bit 4 (TetGen's vertex insertion and deletion) is accepted and not done: idmesh adds
-//! and removes no vertices here. What makes the result valid, whatever the floating-point
-//! quality figures say:
+//! Scheme bit 4 (TetGen splits slivers by new points) is not done here: it is the Delaunay
+//! sliver removal of `plc/sliver.rs`, which runs before this (with `-q`, and under `-O` with bit
+//! 4 also without it, aiming at 180° minus the `o/` target); this pass adds and removes no
+//! vertices. What makes the result valid, whatever the floating-point quality figures say:
 //! * a change is made only when every new tetrahedron is positively oriented by the exact
 //!   [`orient3d`] (a moved vertex: every tetrahedron of its star, which keeps the star's
 //!   boundary, so the star is still a triangulation of the same polyhedron);
@@ -581,7 +582,7 @@ impl Opt<'_> {
 }
 
 /// Optimises `mesh` in place with `level` passes of the operations in `scheme` (bits: 1 flips,
-/// 2 smoothing, 4 vertex insertion/deletion, not done), aiming at dihedral angles between
+/// 2 smoothing; 4, sliver splitting, is done before, see the module docs), aiming at dihedral angles between
 /// `180 - max_dihedral` and `max_dihedral` degrees; see the module docs. On success the mesh
 /// passed the exact check and is marked [`TetMesh::optimized`] when anything changed.
 pub(crate) fn optimize(

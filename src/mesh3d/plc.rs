@@ -256,6 +256,10 @@ fn mesh_plc_in(
             }
             m.run()?;
         }
+    } else if m.sliver_target().is_some() {
+        // No bounds, but `-O` with scheme bit 4: only the (Delaunay) sliver pass.
+        stage(Stage::Slivers, || (m.steiner, m.steiner))?;
+        m.remove_slivers()?;
     }
     // A rounding sliver lying in a facet with the domain on both sides (an internal facet)
     // cannot be left out of the output like those touching the outside: split its subface

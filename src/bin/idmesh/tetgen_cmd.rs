@@ -79,9 +79,10 @@ Switches are letters that may be grouped, e.g. -pq1.414a0.1V:
               node order in .ele
   -O[L][/S]   optimise the mesh (off by default; TetGen runs -O2/7): L passes (0-10, -O
               alone: 2) of flips (scheme bit 1) and smoothing of interior Steiner points
-              (bit 2; bit 4, vertex insertion/deletion, is not done), each kept only when the
-              extreme dihedral angles improve. The mesh is then no longer Delaunay; facets,
-              segments, regions and input points are kept. With -p or -r only
+              (bit 2), each kept only when the extreme dihedral angles improve; bit 4 splits
+              slivers by new points first (the Delaunay sliver removal of -q, also without
+              -q, aiming at 180 minus -o/). After flips or smoothing the mesh is no longer
+              Delaunay; facets, segments, regions and input points are kept. With -p or -r only
   -o/ANGLE    the maximum dihedral angle the optimisation aims at (default 165); implies -O
   Point attributes of the input are written, interpolated linearly at Steiner points.
   -D -J -X    accepted: idmesh output is always conforming Delaunay, never drops unused

@@ -84,11 +84,28 @@ struct SliverCounts {
 }
 
 impl Mesher<'_> {
-    /// The minimum dihedral angle target in force, if any (degrees).
-    fn sliver_target(&self) -> Option<f64> {
-        self.opts.radius_edge?;
-        let a = self.opts.min_dihedral.unwrap_or(DEFAULT_MIN_DIHEDRAL);
-        (a > 0.0 && !self.walled).then_some(a)
+    /// The minimum dihedral angle target in force, if any (degrees): with a radius-edge
+    /// bound, `-q`'s (`/angle`, else the default); without one, under TetGen's `-O` with scheme
+    /// bit 4 (TetGen splits slivers by new points there), the optimisation's target `o/`
+    /// turned into a minimum angle (165 gives 15). The mesh stays Delaunay either way.
+    pub(super) fn sliver_target(&self) -> Option<f64> {
+        if self.walled {
+            return None;
+        }
+        let o = self.opts;
+        let a = if o.radius_edge.is_some() {
+            o.min_dihedral.unwrap_or(DEFAULT_MIN_DIHEDRAL)
+        } else if o.optimize_level > 0
+            && o.optimize_scheme.unwrap_or(crate::mesh3d::DEFAULT_SCHEME) & 4 != 0
+        {
+            let max = o
+                .optimize_max_dihedral
+                .unwrap_or(crate::mesh3d::DEFAULT_MAX_DIHEDRAL);
+            (180.0 - max).min(MAX_MIN_DIHEDRAL)
+        } else {
+            return None;
+        };
+        (a > 0.0).then_some(a)
     }
 
     /// Whether tet `t` (corners `c`) misses the dihedral target: an angle below `target` or

@@ -17,6 +17,8 @@
 //! reshape the inside of the facet, and the order of the reported subface changes drives the
 //! 3D mesher's queue, so moving it onto the kernel changes the 3D meshes.
 
+use std::ops::ControlFlow;
+
 use crate::hash::FastMap as HashMap;
 
 use crate::mesh2d::kernel::{next, prev, Geometry, InPlane, NONE};
@@ -371,8 +373,166 @@ impl FacetMesh {
         self.find_half_edge(a, b).is_some()
     }
 
+    /// Recovers the missing edge `a b` (a subsegment on the facet's boundary, both ends
+    /// vertices of this mesh) by flipping the triangles *outside* the facet that cross it.
+    ///
+    /// Steiner points reshape only the inside of the facet (see [`FacetMesh::insert`]), so an
+    /// outside triangle can keep an edge that crosses a boundary subsegment split after it was
+    /// made: the subsegment is then in the 3D mesh but never in this one, and splitting it
+    /// again cannot help (the crossing edge survives every split). Lawson's edge recovery on
+    /// the scaffolding alone brings it back: every flip stays inside the union of the crossed
+    /// triangles, so no triangle inside the facet changes; the ones the recovery puts inside
+    /// the facet are returned in `added`. `None` when the segment passes through a vertex,
+    /// meets a corner at infinity, a subsegment or a triangle inside the facet (nothing
+    /// changed), or when the flips run out of budget before the edge appears (some outside
+    /// triangles flipped, none inside); the caller then splits the subsegment as before.
+    pub fn recover_edge(
+        &mut self,
+        a: u32,
+        b: u32,
+        pts: &[[f64; 3]],
+        is_subseg: &dyn Fn(u32, u32) -> bool,
+        on_one_edge: &dyn Fn([u32; 3]) -> bool,
+    ) -> Option<FacetChange> {
+        if is_bound(a) || is_bound(b) || !self.vtri.contains_key(&b) {
+            return None;
+        }
+        let pb = self.pt(b, pts);
+        let side = |fm: &Self, q: u32| fm.orient(a, b, fm.pt(q, pts), pts);
+        // The triangle of a's star that the segment leaves through: (a, x, y) with x strictly
+        // right of a->b and y strictly left.
+        let first = self.around(a, |t, i| {
+            let v = self.tv[t as usize];
+            let (x, y) = (v[next(i)], v[prev(i)]);
+            if is_bound(x) || is_bound(y) {
+                return ControlFlow::Break(None);
+            }
+            let (sx, sy) = (side(self, x), side(self, y));
+            if sx == 0.0
+                && self
+                    .geom
+                    .strictly_between(self.pt(a, pts), pb, self.pt(x, pts))
+            {
+                return ControlFlow::Break(None); // a vertex on the segment
+            }
+            if sx < 0.0 && sy > 0.0 {
+                return ControlFlow::Break(Some((t, i)));
+            }
+            ControlFlow::Continue(())
+        });
+        let (mut t, i) = first?;
+        // Walk along the segment, collecting the crossed edges (as vertex pairs: flips keep
+        // edges' identities only by their ends) and the triangles they bound.
+        let mut region = vec![t];
+        let v = self.tv[t as usize];
+        let (mut x, mut y) = (v[next(i)], v[prev(i)]);
+        let mut crossed: std::collections::VecDeque<[u32; 2]> = Default::default();
+        for _ in 0..self.tv.len() + 1 {
+            if self.inside[t as usize] || is_subseg(x, y) {
+                return None;
+            }
+            crossed.push_back([x, y]);
+            let h = self.find_half_edge(x, y)?;
+            let (h0, k0) = (h / 3, (h % 3) as usize);
+            // The triangle across (x, y) from t.
+            let o = if h0 == t { self.tn[t as usize][k0] } else { h };
+            if o == NONE {
+                return None;
+            }
+            let n = o / 3;
+            let q = self.tv[n as usize][(o % 3) as usize];
+            if is_bound(q) || self.inside[n as usize] {
+                return None;
+            }
+            region.push(n);
+            if q == b {
+                break;
+            }
+            match side(self, q) {
+                s if s < 0.0 => x = q,
+                s if s > 0.0 => y = q,
+                _ => return None, // a vertex on the segment's line, inside the crossed region
+            }
+            t = n;
+        }
+        if self.tv[*region.last()? as usize].iter().all(|&q| q != b) {
+            return None;
+        }
+        let crosses = |fm: &Self, c: u32, q: u32| {
+            if [c, q].iter().any(|u| *u == a || *u == b) {
+                return false;
+            }
+            let (pc, pq) = (fm.pt(c, pts), fm.pt(q, pts));
+            let (s1, s2) = (side(fm, c), side(fm, q));
+            let (s3, s4) = (
+                fm.geom.orient(pc, pq, fm.pt(a, pts)),
+                fm.geom.orient(pc, pq, pb),
+            );
+            s1 * s2 < 0.0 && s3 * s4 < 0.0
+        };
+        let mut budget = 4 * crossed.len() * crossed.len() + 16;
+        while let Some([x, y]) = crossed.pop_front() {
+            if budget == 0 {
+                break;
+            }
+            budget -= 1;
+            let h = self.find_half_edge(x, y)?;
+            let (t, k) = (h / 3, (h % 3) as usize);
+            let o = self.tn[t as usize][k];
+            if o == NONE {
+                return None;
+            }
+            let c = self.tv[t as usize][k];
+            let (ex, ey) = (self.tv[t as usize][next(k)], self.tv[t as usize][prev(k)]);
+            let q = self.tv[(o / 3) as usize][(o % 3) as usize];
+            let (pc, pq) = (self.pt(c, pts), self.pt(q, pts));
+            let convex = self.geom.orient(pc, self.pt(ex, pts), pq) > 0.0
+                && self.geom.orient(pc, pq, self.pt(ey, pts)) > 0.0;
+            if !convex {
+                crossed.push_back([x, y]);
+                continue;
+            }
+            self.flip_edge(t, k);
+            if crosses(self, c, q) {
+                crossed.push_back([c, q]);
+            }
+        }
+        if !crossed.is_empty() || !self.has_edge(a, b) {
+            // Out of budget: the flips made are of the outside alone; the mesh stays valid.
+            return None;
+        }
+        let mut change = FacetChange::default();
+        for &t in &region {
+            let v = self.tv[t as usize];
+            let ins = !on_one_edge(v) && self.classify(v, pts);
+            self.inside[t as usize] = ins;
+            if ins {
+                change.added.push(v);
+            }
+        }
+        self.last = region[0];
+        debug_assert!(self.check().is_ok(), "facet mesh: {:?}", self.check());
+        Some(change)
+    }
+
     /// A half-edge `3t + i` whose edge joins `a` and `b` (either direction).
     fn find_half_edge(&self, a: u32, b: u32) -> Option<u32> {
+        self.around(a, |t, i| {
+            let v = self.tv[t as usize];
+            match (0..3).find(|&j| v[j] == b) {
+                Some(j) => ControlFlow::Break(Some(3 * t + (3 - i - j) as u32)),
+                None => ControlFlow::Continue(()),
+            }
+        })
+    }
+
+    /// Visits the triangles of `a`'s star as `(t, i)` with `tv[t][i] == a`, until `visit`
+    /// breaks with its answer; `None` when `a` is not a vertex or the star is exhausted.
+    fn around<R>(
+        &self,
+        a: u32,
+        mut visit: impl FnMut(u32, usize) -> ControlFlow<Option<R>>,
+    ) -> Option<R> {
         let &t0 = self.vtri.get(&a)?;
         if !self.alive[t0 as usize] {
             return None;
@@ -382,8 +542,8 @@ impl FacetMesh {
         for _ in 0..self.tv.len() + 1 {
             let v = self.tv[t as usize];
             let i = (0..3).find(|&i| v[i] == a)?;
-            if let Some(j) = (0..3).find(|&j| v[j] == b) {
-                return Some(3 * t + (3 - i - j) as u32);
+            if let ControlFlow::Break(r) = visit(t, i) {
+                return r;
             }
             let h = self.tn[t as usize][prev(i)];
             if h == NONE {

@@ -21,7 +21,7 @@ mod frame;
 pub(super) mod keep;
 pub(super) mod sliver;
 
-use super::facet_mesh::{FacetInsertError, FacetMesh};
+use super::facet_mesh::{FacetChange, FacetInsertError, FacetMesh};
 use super::features::{ekey, fkey, Features};
 use super::store::{Located, Tets, GHOST};
 use super::{Options3, TetMesh, NONE};
@@ -371,6 +371,13 @@ impl Mesher<'_> {
         let flat = |t: [u32; 3]| feat.on_one_edge(t);
         let ch =
             self.fmesh[f as usize].insert(v, &self.pts, provisional, &is_sub, &flat, split_of)?;
+        self.apply_facet_change(f, ch);
+        Ok(())
+    }
+
+    /// Records a facet mesh's change: its new subfaces (queued for a check), the ones gone,
+    /// and the subsegments it encroaches.
+    fn apply_facet_change(&mut self, f: u32, ch: FacetChange) {
         for t in ch.removed {
             self.feat.subfaces.remove(&fkey(t));
         }
@@ -381,7 +388,24 @@ impl Mesher<'_> {
         for s in ch.encroached {
             self.seg_q.push_back((s, Why::Check));
         }
-        Ok(())
+    }
+
+    /// Brings subsegment `a b` back into the facet meshes that lost it to their outside
+    /// scaffolding ([`FacetMesh::recover_edge`]), before it is judged missing and split.
+    fn recover_in_facets(&mut self, a: u32, b: u32, e: u32) {
+        for i in 0..self.feat.edges[e as usize].facets.len() {
+            let f = self.feat.edges[e as usize].facets[i];
+            let fm = &self.fmesh[f as usize];
+            if !fm.started() || fm.has_edge(a, b) {
+                continue;
+            }
+            let feat = &self.feat;
+            let is_sub = |x: u32, y: u32| feat.subseg(x, y).is_some();
+            let flat = |t: [u32; 3]| feat.on_one_edge(t);
+            if let Some(ch) = self.fmesh[f as usize].recover_edge(a, b, &self.pts, &is_sub, &flat) {
+                self.apply_facet_change(f, ch);
+            }
+        }
     }
 
     /// Inserts vertex `v` into the 3D mesh. Provisional insertion is refused (nothing changes)
@@ -662,6 +686,7 @@ impl Mesher<'_> {
         let Some(e) = self.feat.subseg(a, b) else {
             return Ok(());
         };
+        self.recover_in_facets(a, b, e);
         if !force && !self.subseg_needs_split(a, b, e) && !self.seg_over_bound(a, b, e) {
             return Ok(());
         }

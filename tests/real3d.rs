@@ -80,3 +80,11 @@ fn oblong_cad_part_meshes_at_pq_and_pq1_414() {
     mesh_and_judge("oblong.off", "pq");
     mesh_and_judge("oblong.off", "pq1.414");
 }
+
+/// Polygon faces, 37 of them not exactly planar (triangulated by the surface repair, with a
+/// warning). `verify3d.py` judges each input polygon as one planar facet, so it cannot judge
+/// this mesh; here it is judged against the repaired surface.
+#[test]
+fn mpi_polygon_model_with_non_planar_faces_meshes_at_pq() {
+    mesh_and_judge("mpi.off", "pq");
+}

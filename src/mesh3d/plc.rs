@@ -651,7 +651,6 @@ impl Mesher<'_> {
                 return true;
             }
         }
-        let _ = t0;
         if !self.sharp.is_empty() || self.opts.keep_surface {
             // Lazy mode (small input angles): vertices of nearby features would encroach each
             // other's subsegments forever; only refused circumcenters split them. Keeping the
@@ -660,14 +659,11 @@ impl Mesher<'_> {
         }
         // The edge's link: a vertex strictly inside the diametral ball of a Delaunay edge shows
         // up among the tetrahedra around it.
-        let mut star = Vec::new();
-        self.tets.star(a, &mut star);
+        let mut ring = Vec::new();
+        self.tets.edge_ring(t0, a, b, &mut ring);
         let (pa, pb) = (self.pts[a as usize], self.pts[b as usize]);
-        for t in star {
+        for t in ring {
             let vs = self.tets.verts(t);
-            if !vs.contains(&b) {
-                continue;
-            }
             for x in vs {
                 if x != a
                     && x != b

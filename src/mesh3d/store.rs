@@ -744,53 +744,94 @@ impl Tets {
     /// All live tets incident to `v` (ghosts included), in `out` (cleared first). Empty when
     /// `v` is not inserted.
     pub fn star(&self, v: VertexId, out: &mut Vec<TetId>) {
+        self.search_star(v, out, |_| false);
+    }
+
+    /// Walks `v`'s star (breadth first from its vertex tet, into `out`, cleared first) until
+    /// `hit` accepts a tet, which is returned; `None` after the whole star.
+    fn search_star(
+        &self,
+        v: VertexId,
+        out: &mut Vec<TetId>,
+        hit: impl FnMut(&Tet) -> bool,
+    ) -> Option<TetId> {
         out.clear();
         let start = self.vertex_tet(v);
         if start == NONE {
-            return;
+            return None;
         }
+        self.search_around(start, [v, v], out, hit)
+    }
+
+    /// The live tets around edge `ab` (ghosts included), in `out` (cleared first), from `t0`,
+    /// a tet containing both.
+    pub fn edge_ring(&self, t0: TetId, a: VertexId, b: VertexId, out: &mut Vec<TetId>) {
+        self.search_around(t0, [a, b], out, |_| false);
+    }
+
+    /// The tets containing the pivot vertices `piv` (one vertex twice, or an edge), reached
+    /// from `start` (which contains them) across faces that contain them, breadth first into
+    /// `out` (cleared first), until `hit` accepts one, which is returned.
+    fn search_around(
+        &self,
+        start: TetId,
+        piv: [VertexId; 2],
+        out: &mut Vec<TetId>,
+        mut hit: impl FnMut(&Tet) -> bool,
+    ) -> Option<TetId> {
+        out.clear();
         out.push(start);
+        if hit(&self.tets[start as usize]) {
+            return Some(start);
+        }
+        // Most stars are small (tens of tets) and rings smaller, where a linear membership
+        // test beats hashing; vertices where many facets meet (real surface models) have stars
+        // of hundreds, where it would be quadratic: past `LINEAR` tets a set takes over.
+        const LINEAR: usize = 48;
+        let mut seen: Option<crate::hash::FastSet<TetId>> = None;
         let mut i = 0;
         while i < out.len() {
             let t = out[i];
             i += 1;
             let tet = &self.tets[t as usize];
             for f in 0..4 {
-                if tet.v[f] == v || tet.n[f] == NONE {
+                if piv.contains(&tet.v[f]) || tet.n[f] == NONE {
                     continue;
                 }
                 let u = tet.n[f] >> 2;
-                // Stars are small (tens of tets), so a linear membership test beats hashing.
-                if !out.contains(&u) {
+                let new = match &mut seen {
+                    Some(set) => set.insert(u),
+                    None => !out.contains(&u),
+                };
+                if new {
                     out.push(u);
+                    if hit(&self.tets[u as usize]) {
+                        return Some(u);
+                    }
+                    if seen.is_none() && out.len() > LINEAR {
+                        seen = Some(out.iter().copied().collect());
+                    }
                 }
             }
         }
+        None
     }
 
     /// A live tet (possibly a ghost, when `ab` is a hull edge or one end is [`GHOST`])
     /// containing both `a` and `b`.
     pub fn find_edge(&self, a: VertexId, b: VertexId) -> Option<TetId> {
         let mut star = Vec::with_capacity(64);
-        self.star(a, &mut star);
-        star.into_iter()
-            .find(|&t| self.tets[t as usize].v.contains(&b))
+        self.search_star(a, &mut star, |t| t.v.contains(&b))
     }
 
     /// A half-face `4t + f` whose face has the vertices `a, b, c` (in any order): `t` contains
     /// all three and `f` is the position of its fourth vertex.
     pub fn find_face(&self, a: VertexId, b: VertexId, c: VertexId) -> Option<u32> {
         let mut star = Vec::with_capacity(64);
-        self.star(a, &mut star);
-        star.into_iter().find_map(|t| {
-            let v = self.tets[t as usize].v;
-            if v.contains(&b) && v.contains(&c) {
-                let f = (0..4).find(|&i| v[i] != a && v[i] != b && v[i] != c)?;
-                Some(neighbor_ref(t, f))
-            } else {
-                None
-            }
-        })
+        let t = self.search_star(a, &mut star, |t| t.v.contains(&b) && t.v.contains(&c))?;
+        let v = self.tets[t as usize].v;
+        let f = (0..4).find(|&i| v[i] != a && v[i] != b && v[i] != c)?;
+        Some(neighbor_ref(t, f))
     }
 }
 

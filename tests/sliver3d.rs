@@ -284,6 +284,19 @@ fn fan_angles_excuse_no_sliver() {
     }
 }
 
+/// A sliver whose first candidate points all make a new sliver gets more of them: this domed
+/// prism (found by a property test) ran out of sliver rounds with one of 5.9° left when each
+/// sliver had 13 candidates.
+#[test]
+fn hard_slivers_get_more_candidates() {
+    let h = 1.2105159808464607;
+    let plc = domed_prism(21, 0.11836250407785101, h);
+    let o = opts(1.414, std::f64::consts::PI * h, 3000.0, None);
+    if let Err(e) = mesh_within(&plc, &o) {
+        panic!("{e}");
+    }
+}
+
 /// The default target is on with a radius-edge bound, and `Some(0.0)` turns it off: the same
 /// input then keeps slivers (so the property tests above test something), and the sliver-free
 /// mesh has at most 1.25 times as many tetrahedra.

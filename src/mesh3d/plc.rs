@@ -1562,6 +1562,9 @@ pub(super) struct Sharp {
     /// only move the problem closer to the apex (Triangle's rule for a skinny triangle whose
     /// short edge faces a small input angle).
     seg_pairs: crate::hash::FastMap<(u32, u32), [f64; 3]>,
+    /// The angle (degrees) of each pair of `seg_pairs`: sliver removal exempts only pairs
+    /// narrower than its target (see [`Sharp::exempts_sliver`]).
+    pair_angle: crate::hash::FastMap<(u32, u32), f64>,
     /// Per facet: protection zones of the sharp edges on it. Tets with a vertex on the facet
     /// inside a zone are exempt: next to a sharp edge the two facets' refinement feeds itself
     /// (each split near one facet encroaches the other), ever closer to the edge.
@@ -1575,6 +1578,8 @@ pub(super) struct Sharp {
     /// theoretical bound (a radius-edge ratio of 2) refinement next to a sharp vertex can
     /// otherwise run towards it (a triangulated U-shaped part at -pq1.2: 4,000 tets within 0.02 of one 9-degree corner).
     balls: Vec<([f64; 3], f64)>,
+    /// Per ball: the smallest angle (degrees) of a sharp pair at its vertex.
+    ball_angle: Vec<f64>,
     /// `balls` and `wedges` indexed by their boxes (nearly every vertex of a scanned surface
     /// is sharp: scanning them all for every tet made refinement quadratic).
     ball_index: box_index::BoxIndex,
@@ -1672,6 +1677,7 @@ impl Sharp {
         let narrow_wedge = wedge_sharp_angle(radius_edge).cos();
         let mut sharp = Sharp::default();
         let mut ball_r2: crate::hash::FastMap<u32, f64> = Default::default();
+        let mut vertex_angle: crate::hash::FastMap<u32, f64> = Default::default();
         for (&v, nbrs) in &feat.seg_adj {
             if (v as usize) >= plc.points.len() {
                 continue;
@@ -1691,11 +1697,14 @@ impl Sharp {
                     let share = facets_of(a).iter().any(|f| facets_of(b).contains(f));
                     if (cos > small && !share) || cos > narrow_wedge {
                         sharp.vertices.insert(v);
+                        let angle = cos.clamp(-1.0, 1.0).acos().to_degrees();
+                        let least = vertex_angle.entry(v).or_insert(angle);
+                        *least = least.min(angle);
                         let edge = |w: u32| feat.subsegs.get(&super::features::ekey(v, w));
                         if let (Some(&e1), Some(&e2)) = (edge(a), edge(b)) {
-                            sharp
-                                .seg_pairs
-                                .insert((e1.min(e2), e1.max(e2)), p(v).to_array());
+                            let key = (e1.min(e2), e1.max(e2));
+                            sharp.seg_pairs.insert(key, p(v).to_array());
+                            sharp.pair_angle.insert(key, angle);
                         }
                         if (1.0 - cos * cos).max(0.0).sqrt() < THIN_WEDGE {
                             sharp.wedges.push(Wedge::new(p(v), p(a), p(b)));
@@ -1713,6 +1722,7 @@ impl Sharp {
         // farthest facet vertex instead would cross a hole of a ring facet.
         let mut balls: Vec<(u32, f64)> = ball_r2.into_iter().collect();
         balls.sort_unstable_by_key(|b| b.0);
+        sharp.ball_angle = balls.iter().map(|b| vertex_angle[&b.0]).collect();
         sharp.balls = balls
             .into_iter()
             .map(|(v, r2)| (p(v).to_array(), r2))
@@ -1811,11 +1821,12 @@ impl Sharp {
         })
     }
 
-    /// Whether `q` lies in the protection ball of a sharp vertex.
-    fn in_ball(&self, q: [f64; 3]) -> bool {
+    /// Whether `q` lies in the protection ball of a sharp vertex whose narrowest sharp pair is
+    /// below `below` degrees (all of them for an infinite `below`).
+    fn in_ball(&self, q: [f64; 3], below: f64) -> bool {
         self.ball_index.candidates(q).any(|i| {
             let (c, r2) = self.balls[i as usize];
-            crate::geometry::dist2_3(q, c) < r2
+            self.ball_angle[i as usize] < below && crate::geometry::dist2_3(q, c) < r2
         })
     }
 
@@ -1847,7 +1858,14 @@ impl Sharp {
     /// ratio) is pinned by a sharp vertex: it has an end in the apex's protection ball or in a
     /// thin wedge's zone, or it joins points of the apex's two edges on one concentric shell. Refining
     /// such a tet would only make a shorter edge of the same kind.
-    fn short_edge_pinned(&self, vs: [u32; 4], feat: &Features, pts: &[[f64; 3]]) -> bool {
+    /// Only sharp vertex pairs narrower than `below` degrees count.
+    fn short_edge_pinned(
+        &self,
+        vs: [u32; 4],
+        feat: &Features,
+        pts: &[[f64; 3]],
+        below: f64,
+    ) -> bool {
         if self.vertices.is_empty() {
             return false;
         }
@@ -1861,12 +1879,18 @@ impl Sharp {
             .unwrap_or((0, 1));
         let (u, w) = (vs[i], vs[j]);
         let (pu, pw) = (pts[u as usize], pts[w as usize]);
-        if self.in_ball(pu) || self.in_ball(pw) || self.in_wedge(pu) || self.in_wedge(pw) {
+        if self.in_ball(pu, below)
+            || self.in_ball(pw, below)
+            || self.in_wedge(pu)
+            || self.in_wedge(pw)
+        {
             return true;
         }
         match (feat.split_edge.get(&u), feat.split_edge.get(&w)) {
             (Some(&e1), Some(&e2)) if e1 != e2 => {
-                self.on_one_shell((e1.min(e2), e1.max(e2)), pu, pw)
+                let pair = (e1.min(e2), e1.max(e2));
+                self.pair_angle.get(&pair).is_some_and(|&a| a < below)
+                    && self.on_one_shell(pair, pu, pw)
             }
             _ => false,
         }
@@ -1881,6 +1905,27 @@ impl Sharp {
     /// bound: it has a vertex next to a sharp edge, its shortest edge is pinned by a sharp
     /// vertex, or it spans two facets meeting at a sharp edge.
     fn exempts(&self, vs: [u32; 4], feat: &Features, pts: &[[f64; 3]]) -> bool {
+        self.exempts_sliver(vs, feat, pts, f64::INFINITY)
+    }
+
+    /// Whether a small input angle excuses a sliver with these vertices from sliver removal
+    /// with the minimum dihedral angle `target` (degrees; infinite: [`Sharp::exempts`]): as
+    /// [`Sharp::exempts`], but a sharp vertex (two input edges below 60°, or below the wedge
+    /// angle in one facet) counts only where two input edges meet below `target`. Where they
+    /// meet below the target, a subface at the corner has that angle and a tet on it with a
+    /// vertex off the facet has a dihedral angle of about that size at the corner; wider pairs
+    /// force no such tet. On triangulated surfaces such wider pairs are fan angles at nearly
+    /// every vertex (two edges of a flat fan two triangles apart): a fan-disk model at
+    /// -pq1.414 kept 44 slivers down to 0.05°, all excused by one, which sliver removal (a
+    /// point, or the splits it demands) removes. Radius-edge refinement keeps the broader
+    /// rule: there the protection balls stop refinement from running towards such vertices.
+    pub(super) fn exempts_sliver(
+        &self,
+        vs: [u32; 4],
+        feat: &Features,
+        pts: &[[f64; 3]],
+        target: f64,
+    ) -> bool {
         if self.vertices.is_empty() && self.edges.is_empty() {
             return false;
         }
@@ -1896,7 +1941,7 @@ impl Sharp {
                 }
             }
         }
-        if self.short_edge_pinned(vs, feat, pts) {
+        if self.short_edge_pinned(vs, feat, pts, target) {
             return true;
         }
         if self.facet_pairs.is_empty() {

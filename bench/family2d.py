@@ -12,9 +12,11 @@ has to work around sharp input angles or a long thin gap:
 * comb-N: a comb with N thin teeth (each 1:20) on a spine;
 * wedge-T: a square with one spike of tip angle T degrees (one very sharp input angle);
 * fan-N: N segments radiating from one centre vertex inside a square, with small angles
-  (a few degrees) between neighbours.
+  (a few degrees) between neighbours;
+* tee-T: a segment ending on an input point inside another segment at T degrees from it.
 
-Coordinates are written with 17 significant digits, so the files are regenerated bit for bit:
+Coordinates are written as Python's repr (round-trip exact), so the files are regenerated bit for
+bit:
 
     python3 bench/family2d.py            # writes tests/data/family2d/*.poly
     python3 bench/family2d.py --list     # prints the member names
@@ -23,6 +25,9 @@ Coordinates are written with 17 significant digits, so the files are regenerated
 import math
 import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bench2d import write_poly  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OUT = os.path.join(ROOT, "tests", "data", "family2d")
@@ -116,6 +121,16 @@ def fan(n):
     return pts, segs
 
 
+def tee(deg):
+    """The unit square with a segment of slope 2 across it and a second one starting at an
+    input point inside the first, deg degrees off it (a T-junction with a sharp angle)."""
+    pts = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.1875, 0.0625), (0.5, 0.6875),
+           (0.25, 0.1875)]
+    a = math.atan2(2.0, 1.0) + math.radians(deg)
+    pts.append((0.25 + 0.6 * math.cos(a), 0.1875 + 0.6 * math.sin(a)))
+    return pts, closed(4) + [(4, 5), (6, 7)]
+
+
 def closed(n):
     return [(i, (i + 1) % n) for i in range(n)]
 
@@ -132,19 +147,8 @@ MEMBERS = {
     "wedge-2": lambda: wedge(2.0),
     "wedge-10": lambda: wedge(10.0),
     "fan-6": lambda: fan(6),
+    "tee-3": lambda: tee(3.0),
 }
-
-
-def write_poly(path, pts, segs):
-    with open(path, "w") as f:
-        f.write(f"# {os.path.basename(path)}: written by bench/family2d.py\n")
-        f.write(f"{len(pts)} 2 0 0\n")
-        for i, (x, y) in enumerate(pts):
-            f.write(f"{i + 1} {x:.17g} {y:.17g}\n")
-        f.write(f"{len(segs)} 0\n")
-        for i, (a, b) in enumerate(segs):
-            f.write(f"{i + 1} {a + 1} {b + 1}\n")
-        f.write("0\n")
 
 
 def main():
@@ -154,7 +158,8 @@ def main():
     os.makedirs(OUT, exist_ok=True)
     for name, make in MEMBERS.items():
         pts, segs = make()
-        write_poly(os.path.join(OUT, name + ".poly"), pts, segs)
+        write_poly(os.path.join(OUT, name + ".poly"), pts, segs, [],
+                   title=f"{name}.poly: written by bench/family2d.py")
     print(f"wrote {len(MEMBERS)} files to {os.path.relpath(OUT, ROOT)}/")
 
 

@@ -83,13 +83,18 @@ def run_idmesh(idmesh, poly, angle, tmp, verify):
         v = subprocess.run([sys.executable, VERIFY2D, poly, stem + ".node", stem + ".ele",
                             "--min-angle", str(angle), "--require-delaunay", "--json"],
                            capture_output=True, text=True)
-        res["verify"] = "ok" if v.returncode == 0 else "FAIL"
+        res["verify"] = "ok"
+        res["unexplained"] = None
         try:
             import json
-            j = json.loads(v.stdout[v.stdout.index("{"):])
-            res["unexplained"] = find_key(j, "unexplained")
+            j = json.loads(v.stdout.strip().splitlines()[-1])
+            res["unexplained"] = find_key(j, "below_min_angle_unexplained")
+            failed = [k for k, c in j.get("checks", {}).items()
+                      if isinstance(c, dict) and c.get("ok") is False]
         except (ValueError, KeyError):
-            res["unexplained"] = None
+            failed = []
+        if v.returncode != 0:
+            res["verify"] = "FAIL " + ",".join(failed)
     return res
 
 
@@ -97,7 +102,7 @@ def find_key(j, word):
     """The first number under a key containing `word` in verify2d's JSON report."""
     if isinstance(j, dict):
         for k, v in j.items():
-            if word in k and isinstance(v, (int, float)):
+            if k == word and isinstance(v, (int, float)):
                 return v
         for v in j.values():
             x = find_key(v, word)

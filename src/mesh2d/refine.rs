@@ -44,6 +44,10 @@ fn size_class(l2: f64) -> u32 {
     2 * exp + above as u32
 }
 
+/// A skinny triangle in the queue: size class of its shortest edge, arrival number, the
+/// triangle and its vertices (to tell whether it is still the same triangle when popped).
+type SkinnyKey = (u32, u64, TriId, [u32; 3]);
+
 /// Which segments may receive Steiner points (Triangle's `-Y` and `-YY`).
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub(super) enum SegmentSteiner {
@@ -85,7 +89,7 @@ pub(super) struct Refiner<'a> {
     /// vertices near sharp corners and narrow gaps settle before the coarse triangles around
     /// them are split, so these grade outward instead of being split at the fine size too
     /// (smallest angle first made 2.3x Triangle's count on a slot of aspect 1:200 at 33°).
-    queue: BinaryHeap<Reverse<(u32, u64, TriId, [u32; 3])>>,
+    queue: BinaryHeap<Reverse<SkinnyKey>>,
     /// How many triangles entered `queue`: first in first out within a size class.
     queued: u64,
     /// Triangles that are bad only by size, first in first out (cheap, cache-friendly); the

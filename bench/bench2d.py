@@ -347,9 +347,9 @@ def hole_pslg(n=64):
     return pts, segs, [(0.5, 0.5)]
 
 
-def write_poly(path, pts, segs, holes):
+def write_poly(path, pts, segs, holes, title="square with a circular hole, written by bench/bench2d.py"):
     with open(path, "w") as f:
-        f.write(f"# square with a circular hole, written by bench/bench2d.py\n{len(pts)} 2 0 0\n")
+        f.write(f"# {title}\n{len(pts)} 2 0 0\n")
         for i, (x, y) in enumerate(pts):
             f.write(f"{i} {x!r} {y!r}\n")  # repr round-trips exactly
         f.write(f"{len(segs)} 0\n")

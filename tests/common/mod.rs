@@ -1108,8 +1108,9 @@ fn min_pair_angle(d: &[[f64; 2]]) -> f64 {
 }
 
 /// The Miller–Pav–Walkington exemption (as Triangle's `testtriangle`): the triangle's shortest
-/// edge joins Steiner points interior to two different input segments that share an endpoint,
-/// and both lie at the same distance from that endpoint to within 0.1%.
+/// edge joins Steiner points interior to two different input segments that share an endpoint
+/// (or where one ends inside the other), and both lie at the same distance from that point to
+/// within 0.1%.
 fn mpw_exempt(
     tri: &[u32; 3],
     v: &[[f64; 2]],
@@ -1131,7 +1132,15 @@ fn mpw_exempt(
         return false;
     }
     let (a, b) = (pslg.segments[su as usize], pslg.segments[sw as usize]);
-    let Some(&o) = a.iter().find(|x| b.contains(x)) else {
+    // A shared endpoint, or a T-junction: an endpoint of one segment lying inside the other
+    // (the input point splits that segment there, so both pieces end at it, as in Triangle).
+    let shared = a.iter().find(|x| b.contains(x));
+    let inside = || {
+        a.iter()
+            .find(|&&x| interior_seg[x as usize] == sw)
+            .or_else(|| b.iter().find(|&&x| interior_seg[x as usize] == su))
+    };
+    let Some(&o) = shared.or_else(inside) else {
         return false;
     };
     let o = pslg.points[o as usize];

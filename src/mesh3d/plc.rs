@@ -827,7 +827,12 @@ impl Mesher<'_> {
         let m = self.new_vertex(cc)?;
         let mut tried_centroid = cc == centroid;
         loop {
-            match self.facet_insert(fid, m, true, None) {
+            // A point on a 3D vertex missing from this facet mesh (rounding) is a duplicate too.
+            let on_vertex = match self.tets.locate(self.pts[m as usize], self.hint) {
+                Located::Vertex(w) => Err(FacetInsertError::Duplicate(w)),
+                Located::InTet(_) => Ok(()),
+            };
+            match on_vertex.and_then(|()| self.facet_insert(fid, m, true, None)) {
                 Ok(()) => break,
                 // The circumcenter rounds onto an existing vertex (the facet mesh is then not
                 // quite Delaunay around it): split at the centroid instead.
@@ -1586,6 +1591,10 @@ pub(super) struct Sharp {
     wedge_index: box_index::BoxIndex,
 }
 
+/// The part of a sharp vertex's protection ball (relative to its radius) inside which
+/// sliver removal excuses every tet ([`Sharp::deep_in_ball`]).
+const DEEP_FRACTION: f64 = 1.0 / 16.0;
+
 /// A thin wedge: two input edges from `apex` to `ends` meeting at an angle whose sine is below
 /// [`THIN_WEDGE`], with its protection zone, the points within `sqrt(r2)` of both edges
 /// (bounding box `lo`, `hi`). The two edges run side by side along their whole length (0.07°
@@ -1830,6 +1839,22 @@ impl Sharp {
         })
     }
 
+    /// Whether all four vertices `vs` lie deep inside one sharp vertex's protection ball,
+    /// within [`DEEP_FRACTION`] of its radius. Sliver removal excuses such a tet whatever the
+    /// angle there: where input edges meet a little above the target (armadillo.off has
+    /// corners of 15.3° and 17.3°), a tet on the corner's subfaces can still have a dihedral
+    /// angle below it, and each point that removes one makes a smaller one closer to the apex,
+    /// until floating point runs out. Larger tets there are still treated, so that fan angles
+    /// of triangulated surfaces keep no sliver (`exempts_sliver`).
+    fn deep_in_ball(&self, vs: [u32; 4], pts: &[[f64; 3]]) -> bool {
+        let q = vs.map(|v| pts[v as usize]);
+        self.ball_index.candidates(q[0]).any(|i| {
+            let (c, r2) = self.balls[i as usize];
+            let deep2 = r2 * DEEP_FRACTION * DEEP_FRACTION;
+            q.iter().all(|&x| crate::geometry::dist2_3(x, c) < deep2)
+        })
+    }
+
     /// Whether `q` lies in the protection zone of a thin wedge.
     fn in_wedge(&self, q: [f64; 3]) -> bool {
         use crate::geometry::dist2_point_segment3 as d2;
@@ -1941,7 +1966,7 @@ impl Sharp {
                 }
             }
         }
-        if self.short_edge_pinned(vs, feat, pts, target) {
+        if self.short_edge_pinned(vs, feat, pts, target) || self.deep_in_ball(vs, pts) {
             return true;
         }
         if self.facet_pairs.is_empty() {

@@ -28,7 +28,8 @@
 //! the mesh stays the Delaunay tetrahedralization of its vertices and the features stay
 //! conforming, whatever the floating-point constructions of the candidates were. Tetrahedra
 //! next to a small input angle (`Sharp::exempts_sliver`: a sharp edge between facets, a thin
-//! wedge, or a vertex where two input edges meet below the target), rounding slivers lying in
+//! wedge, a vertex where two input edges meet below the target, or a tet deep inside a sharp
+//! vertex's protection ball, where removal would run towards the apex), rounding slivers lying in
 //! one facet (the output drops or splits those), and tetrahedra below the size floor are not
 //! treated; the exempt ones are counted separately in the `-V` progress lines. The exemption
 //! is narrower than the radius-edge bound's (`Sharp::exempts`): two input edges meeting

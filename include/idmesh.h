@@ -210,6 +210,11 @@ typedef enum idm_input_error {
    * (`surface_input` only).
    */
   IDM_INPUT_UNTRIANGULABLE_POLYGON = 32,
+  /**
+   * `item`: a point too close to facet `other` to mesh them apart (closer than the 3D
+   * mesher's resolution, 2^-36 of the input's size).
+   */
+  IDM_INPUT_POINT_TOO_CLOSE_TO_FACET = 33,
 } idm_input_error;
 
 /**

@@ -204,6 +204,18 @@ pub enum InputError {
         /// The facet.
         facet: usize,
     },
+    /// A point and a facet are closer than the 3D mesher resolves: the mesh between them would
+    /// need elements below the size floor (2^-36 of the input's diameter), which floating point
+    /// constructions cannot place reliably. `distance` is the point's distance from the
+    /// facet's plane.
+    PointTooCloseToFacet {
+        /// The point.
+        point: usize,
+        /// The facet.
+        facet: usize,
+        /// Its distance from the facet's plane.
+        distance: f64,
+    },
     /// A point lies in the interior of a segment.
     VertexOnSegment {
         /// The point.
@@ -389,6 +401,15 @@ impl InputError {
                 vertex: pt(vertex),
                 facet: fc(facet),
             },
+            PointTooCloseToFacet {
+                point,
+                facet,
+                distance,
+            } => PointTooCloseToFacet {
+                point: pt(point),
+                facet: fc(facet),
+                distance,
+            },
             VertexOnSegment { vertex, segment } => VertexOnSegment {
                 vertex: pt(vertex),
                 segment: sg(segment),
@@ -551,6 +572,16 @@ impl fmt::Display for InputError {
             VertexOnSegment { vertex, segment } => {
                 write!(f, "point {vertex} lies inside segment {segment}")
             }
+            PointTooCloseToFacet {
+                point,
+                facet,
+                distance,
+            } => write!(
+                f,
+                "point {point} is {distance:.3e} from the plane of facet {facet}: too close to \
+                 mesh apart (the 3D mesher resolves 2^-36 of the input's size); move it onto \
+                 the facet or further away"
+            ),
             OpenSurface {
                 count,
                 edges,

@@ -107,9 +107,8 @@ fn near_coincident_tiny_facets_end_within_the_budget() {
 
 /// The cube with a cubic hole and one point added 1e-11 of the box from a corner, `-pq`: the
 /// 3D campaign's most common internal error ("subface … cannot be split", 79 of 6,819 cases).
-/// Ignored until fixed (issue 14).
+/// Now an input error naming the point and the facet it is too close to.
 #[test]
-#[ignore]
 fn near_duplicate_point_is_meshed_or_named() {
     let case = mutate::Case3 {
         seed: 202,
@@ -160,4 +159,60 @@ fn segment_hugging_the_boundary_terminates() {
     assert!(m.steiner_points <= 20_100, "{}", m.steiner_points);
     m.validate().unwrap();
     m.validate_constrained().unwrap();
+}
+
+/// The cube with a point 5e-15 outside its corner (0, 1, 1), `-p`: "internal error: subface …
+/// cannot be split: the subsegments it encroaches are below the size floor". The point is
+/// closer to facet 4 (x = 0) than the mesher resolves: an input error naming both.
+#[test]
+fn point_next_to_a_facet_is_named() {
+    let case = mutate::Case3 {
+        seed: 198,
+        muts: vec![NearDuplicate {
+            point: 35702,
+            e: 130,
+            dir: [-70, -116, -16],
+        }],
+        ratio: None,
+        keep_surface: false,
+    };
+    match case.run() {
+        Err(idmesh::Error::Input(idmesh::InputError::PointTooCloseToFacet {
+            point,
+            facet,
+            distance,
+        })) => {
+            assert_eq!((point, facet), (8, 4));
+            assert!(distance > 0.0 && distance < 1e-14, "{distance}");
+        }
+        r => panic!("{r:?}"),
+    }
+}
+
+/// The cube with a cubic hole and a facet 1e-8 of the box across added next to a corner of the
+/// hole, `-p` and `-pq1.4`: its facet mesh and the 3D mesh triangulated nearly cocircular
+/// quadrilaterals of its rounded Steiner points differently, and splitting the subfaces the 3D
+/// mesh lacked made ever smaller ones until the size floor ("subface … cannot be split").
+/// Now the facet mesh flips to follow the 3D mesh (`FacetMesh::follow_flip`), and the mesh
+/// validates; with `-p`, with fewer than a hundred Steiner points.
+#[test]
+fn tiny_facet_next_to_a_hole_corner_is_meshed() {
+    for ratio in [None, Some(209)] {
+        let case = mutate::Case3 {
+            seed: 94,
+            muts: vec![Tiny {
+                point: 50505,
+                e: 186,
+            }],
+            ratio,
+            keep_surface: false,
+        };
+        let m = case.run().unwrap_or_else(|e| panic!("{ratio:?}: {e}"));
+        assert!(m.complete, "{ratio:?}");
+        m.validate().unwrap_or_else(|e| panic!("{ratio:?}: {e}"));
+        if ratio.is_none() {
+            // Conformity alone: before, 2,400 Steiner points and still failing.
+            assert!(m.vertices.len() < 19 + 200, "{} points", m.vertices.len());
+        }
+    }
 }

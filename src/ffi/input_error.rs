@@ -86,6 +86,9 @@ pub enum idm_input_error {
     /// `item`: a non-planar surface polygon that cannot be triangulated on its own vertices
     /// (`surface_input` only).
     IDM_INPUT_UNTRIANGULABLE_POLYGON = 32,
+    /// `item`: a point too close to facet `other` to mesh them apart (closer than the 3D
+    /// mesher's resolution, 2^-36 of the input's size).
+    IDM_INPUT_POINT_TOO_CLOSE_TO_FACET = 33,
 }
 
 /// An input error as C sees it: its kind and its `item`, `part` and `other` indices (-1: none).
@@ -182,6 +185,10 @@ fn describe(e: &InputError) -> (idm_input_error, [i64; 3]) {
         VertexOnSegment { vertex, segment } => {
             (IDM_INPUT_VERTEX_ON_SEGMENT, [ix(vertex), none, ix(segment)])
         }
+        PointTooCloseToFacet { point, facet, .. } => (
+            IDM_INPUT_POINT_TOO_CLOSE_TO_FACET,
+            [ix(point), none, ix(facet)],
+        ),
         OpenSurface {
             count, ref edges, ..
         } => {

@@ -565,6 +565,7 @@ fn tetgen_code(e: &Error) -> i32 {
             | SegmentCrossesFacet { .. }
             | FacetsIntersect { .. }
             | VertexOnFacet { .. }
+            | PointTooCloseToFacet { .. }
             | VertexOnSegment { .. },
         ) => 3,
         Error::Internal(m) if m.contains("out of memory") => 1,

@@ -515,6 +515,69 @@ impl FacetMesh {
         Some(change)
     }
 
+    /// Flips an edge of the inside triangle `v` to the other diagonal of its quadrilateral when
+    /// the 3D mesh has both triangles of that diagonal (`in_3d`), so that this mesh follows the
+    /// 3D mesh instead of the subface `v` being split.
+    ///
+    /// The 3D mesh and this one disagree only where four points of the facet are nearly
+    /// cocircular: facet points are rounded a hair off the plane, and the 3D insphere test
+    /// sees that while this mesh's in-plane test does not. Circumcentre insertion makes such
+    /// quadrilaterals all the time; on a facet small against its distance from the origin
+    /// (1e-8 of a unit box, next to a hole corner), splitting the missing subface instead made
+    /// ever smaller ones, down to the precision limit. Either diagonal is then Delaunay up to
+    /// rounding, and both new triangles are already faces of the 3D mesh, so the flip ends
+    /// that subface's recovery. Only a convex quadrilateral (exact orientation in the facet's
+    /// projection) of two inside triangles is flipped, never across a subsegment.
+    pub fn follow_flip(
+        &mut self,
+        v: [u32; 3],
+        pts: &[[f64; 3]],
+        is_subseg: &dyn Fn(u32, u32) -> bool,
+        on_one_edge: &dyn Fn([u32; 3]) -> bool,
+        in_3d: &dyn Fn([u32; 3]) -> bool,
+    ) -> Option<FacetChange> {
+        let h = self.find_half_edge(v[0], v[1])?;
+        let t = h / 3;
+        let tv = self.tv[t as usize];
+        if !self.inside[t as usize] || !v.iter().all(|x| tv.contains(x)) {
+            return None;
+        }
+        for k in 0..3 {
+            let (c, x, y) = (tv[k], tv[next(k)], tv[prev(k)]);
+            let o = self.tn[t as usize][k];
+            if o == NONE || is_subseg(x, y) {
+                continue;
+            }
+            let n = o / 3;
+            let q = self.tv[n as usize][(o % 3) as usize];
+            if is_bound(q) || !self.inside[n as usize] {
+                continue;
+            }
+            let (pc, pq) = (self.pt(c, pts), self.pt(q, pts));
+            let convex = self.geom.orient(pc, self.pt(x, pts), pq) > 0.0
+                && self.geom.orient(pc, pq, self.pt(y, pts)) > 0.0;
+            let (t1, t2) = ([c, x, q], [c, q, y]);
+            if !convex || on_one_edge(t1) || on_one_edge(t2) || !in_3d(t1) || !in_3d(t2) {
+                continue;
+            }
+            let old = self.tv[n as usize];
+            self.flip_edge(t, k);
+            let mut change = FacetChange {
+                removed: vec![tv, old],
+                ..Default::default()
+            };
+            // Both lie in the union of two inside triangles, so inside.
+            for tt in [t, n] {
+                self.inside[tt as usize] = true;
+                change.added.push(self.tv[tt as usize]);
+            }
+            self.last = t;
+            debug_assert!(self.check().is_ok(), "facet mesh: {:?}", self.check());
+            return Some(change);
+        }
+        None
+    }
+
     /// A half-edge `3t + i` whose edge joins `a` and `b` (either direction).
     fn find_half_edge(&self, a: u32, b: u32) -> Option<u32> {
         self.around(a, |t, i| {

@@ -791,6 +791,9 @@ impl Mesher<'_> {
         if !force && !self.subface_needs_split(v) && !self.face_over_bound(v, fid) {
             return Ok(());
         }
+        if !force && self.follow_3d(v, fid) {
+            return Ok(());
+        }
         let [a, b, c] = v.map(|x| self.pts[x as usize]);
         if force && self.below_floor(&[a, b, c]) {
             return Ok(()); // a refused circumcenter's demand; the face is present
@@ -856,19 +859,24 @@ impl Mesher<'_> {
                         if force {
                             return Ok(()); // a quality demand on a present face: dropped
                         }
-                        return Err(Error::Internal(format!(
-                            "subface {v:?} of facet {fid} cannot be split: the subsegments \
-                             it encroaches are below the size floor"
-                        )));
+                        return Err(self.too_close(
+                            v,
+                            fid,
+                            "cannot be split: the \
+                             subsegments it encroaches are below the size floor",
+                        ));
                     }
                     tried_centroid = true;
                     self.pts[m as usize] = centroid;
                 }
                 Err(FacetInsertError::Duplicate(d)) if v.contains(&d) => {
-                    return Err(Error::Internal(format!(
-                        "subface {v:?} of facet {fid} is too small to split (precision \
-                         exhausted: its centroid rounds onto its corner {d})"
-                    )))
+                    self.pts.pop();
+                    return Err(self.too_close(
+                        v,
+                        fid,
+                        "is too small to split (precision exhausted: its centroid rounds onto \
+                         a corner)",
+                    ));
                 }
                 Err(e) => {
                     return Err(Error::Internal(format!(
@@ -887,6 +895,56 @@ impl Mesher<'_> {
         self.feat.vert_facets.insert(m, vec![fid]);
         self.insert3d(m, false)
             .map_err(|_| Error::Internal(format!("facet point {m} refused")))
+    }
+
+    /// The error for a subface `v` of facet `fid` that conformity needs split but the size
+    /// floor forbids: the input point nearest to it off the facet is too close to the facet
+    /// (an input error naming both), or, should every input point be on the facet, an
+    /// internal error saying `what`.
+    fn too_close(&self, v: [u32; 3], fid: u32, what: &str) -> Error {
+        let c = v.map(|x| self.pts[x as usize]);
+        let centroid = [0, 1, 2].map(|k| (c[0][k] + c[1][k] + c[2][k]) / 3.0);
+        let info = &self.feat.facets[fid as usize];
+        let nearest = (0..self.plc.points.len() as u32)
+            .filter(|x| !info.vertices.contains(x))
+            .min_by(|&x, &y| {
+                let d = |u: u32| crate::geometry::dist2_3(self.pts[u as usize], centroid);
+                d(x).total_cmp(&d(y))
+            });
+        let Some(point) = nearest else {
+            return Error::Internal(format!("subface {v:?} of facet {fid} {what}"));
+        };
+        let [a, b, cc] = info
+            .plane
+            .map(|x| glam::DVec3::from_array(self.pts[x as usize]));
+        let n = (b - a).cross(cc - a).normalize();
+        let distance = (glam::DVec3::from_array(self.pts[point as usize]) - a)
+            .dot(n)
+            .abs();
+        Error::Input(crate::error::InputError::PointTooCloseToFacet {
+            point: point as usize,
+            facet: fid as usize,
+            distance,
+        })
+    }
+
+    /// Brings a subface missing from the 3D mesh back by a flip in its facet mesh where the
+    /// 3D mesh triangulates the quadrilateral the other way ([`FacetMesh::follow_flip`]).
+    fn follow_3d(&mut self, v: [u32; 3], fid: u32) -> bool {
+        if self.tets.find_face(v[0], v[1], v[2]).is_some() {
+            return false;
+        }
+        let feat = &self.feat;
+        let tets = &self.tets;
+        let is_sub = |a: u32, b: u32| feat.subseg(a, b).is_some();
+        let flat = |t: [u32; 3]| feat.on_one_edge(t);
+        let in_3d = |t: [u32; 3]| tets.find_face(t[0], t[1], t[2]).is_some();
+        let Some(ch) = self.fmesh[fid as usize].follow_flip(v, &self.pts, &is_sub, &flat, &in_3d)
+        else {
+            return false;
+        };
+        self.apply_facet_change(fid, ch);
+        true
     }
 
     /// Queues the subsegments a refused facet point encroaches (to be split first, unchecked,

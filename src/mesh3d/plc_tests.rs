@@ -265,8 +265,14 @@ fn spike_facet_points_stay_inside_their_facets() {
             "vertex {p:?} outside the spike's bounding box"
         );
     }
+    // The volume bound holds for every tet.
     let want = mesh.volume();
-    assert!(want > 0.0 && mesh.tets.len() > 100);
+    assert!(want > 0.0 && mesh.complete);
+    for t in &mesh.tets {
+        let c = t.map(|v| mesh.vertices[v as usize]);
+        let vol = crate::geometry::tet_volume(c).abs();
+        assert!(vol <= 0.00001, "tet {t:?} of volume {vol}");
+    }
 }
 
 /// A unit cube whose top face is split into a needle triangle (0.057° at the corner

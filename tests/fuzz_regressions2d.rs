@@ -500,3 +500,44 @@ fn split_point_beside_a_sliver_goes_into_the_other_triangle() {
         assert!(m.complete, "case {k}");
     }
 }
+
+/// The L with a slit translated to 1e7, a segment of 1e-9 of its size (about an ulp of the
+/// coordinates) starting an ulp from the end of one of 1e-5: the longer segment passes
+/// within rounding through both ends of the shorter one, so a piece of it
+/// and the shorter segment shared one edge. Splitting the piece (for `-q`) split the edge
+/// and left the other subsegment's edge missing (campaign seed 1 run 4942, "subsegment …
+/// is missing from the mesh"). An edge now carries one subsegment: the second to arrive
+/// is retired.
+#[test]
+fn segments_sharing_an_edge_within_rounding_split_together() {
+    for y in [true, false] {
+        for angle in [Some(193), None] {
+            let c = case_y(
+                220,
+                vec![
+                    Translate {
+                        e: 159,
+                        dir: [-103, 69, -28],
+                    },
+                    Tiny {
+                        point: 20967,
+                        e: 219,
+                    },
+                    Tiny {
+                        point: 32378,
+                        e: 247,
+                    },
+                ],
+                angle,
+                y,
+            );
+            let m = mesh(&c).unwrap_or_else(|e| panic!("-Y {y}, angle {angle:?}: {e}"));
+            // Both input segments' ends are in the mesh and every segment piece is an edge
+            // (checked by `mesh`); without an angle bound the run completes.
+            assert!(angle.is_some() || m.complete);
+            for v in [8u32, 9, 10, 11] {
+                assert!(m.segments.iter().flatten().any(|&w| w == v), "vertex {v}");
+            }
+        }
+    }
+}

@@ -277,6 +277,27 @@ impl<'a> Refiner<'a> {
             if a == NONE {
                 continue;
             }
+            if let Some(h) = self.cdt.find_edge(a, b) {
+                // Another subsegment already on this edge: two input segments run within
+                // rounding of each other here (a vertex of one became a vertex of the other)
+                // and share the edge. One subsegment per edge: otherwise splitting one would
+                // leave the other's edge missing. The input segment's piece is kept over a
+                // hull edge's.
+                let t = self.cdt.seg_at(h);
+                if t != NONE && t != s {
+                    let other = self.cdt.segs[t as usize];
+                    if other.a != NONE && (other.a == b || other.b == b) {
+                        let keep_s = other.input == NONE && self.cdt.segs[s as usize].input != NONE;
+                        let retire = if keep_s { t } else { s };
+                        self.cdt.segs[retire as usize].a = NONE;
+                        if keep_s {
+                            self.cdt.set_seg(h, s);
+                        } else {
+                            continue;
+                        }
+                    }
+                }
+            }
             let h = match self.cdt.insert_segment(s) {
                 Recovery::Edge(h) => {
                     self.queue_new_triangles();

@@ -252,3 +252,292 @@ fn forgiven_rounding_never_hides_a_non_delaunay_mesh() {
         Err(e) => panic!("{e}"),
     }
 }
+
+fn case_y(seed: u8, muts: Vec<mutate::Mutation>, angle: Option<u8>, y: bool) -> mutate::Case2 {
+    mutate::Case2 {
+        seed,
+        muts,
+        angle,
+        no_boundary_steiner: y,
+    }
+}
+
+/// Pieces of one input segment split down to a few thousand units in the last place (near
+/// duplicates and tiny segments by the star's inner corners, scaled by up to 1e27 or
+/// translated): the rounded midpoint of a piece fell on the far side of the next piece of
+/// the same segment, bent by rounding, or on the exterior side of a boundary piece ("splitting
+/// segment … OnSegment", campaign seeds 1–5, e.g. seed 2 run 1254). The split point is now a
+/// nearby float point inside the edge's triangles, chosen with exact tests.
+#[test]
+fn split_point_rounded_past_a_neighbouring_piece_is_moved_inside() {
+    let cases = [
+        case_y(
+            29,
+            vec![
+                Perturb {
+                    point: 3196,
+                    e: 166,
+                    dir: [109, -55, 70],
+                },
+                Perturb {
+                    point: 6772,
+                    e: 196,
+                    dir: [-7, 124, 51],
+                },
+                NearDuplicate {
+                    point: 36165,
+                    e: 247,
+                    dir: [-101, -79, -80],
+                },
+                Scale { e: 119 },
+                Translate {
+                    e: 170,
+                    dir: [60, -127, 82],
+                },
+            ],
+            Some(187),
+            false,
+        ),
+        case_y(
+            221,
+            vec![NearDuplicate {
+                point: 4875,
+                e: 223,
+                dir: [-122, 106, 52],
+            }],
+            None,
+            false,
+        ),
+        case_y(
+            248,
+            vec![
+                NearDuplicate {
+                    point: 50957,
+                    e: 225,
+                    dir: [-102, -77, 61],
+                },
+                Scale { e: 58 },
+                Tiny {
+                    point: 59081,
+                    e: 98,
+                },
+            ],
+            Some(152),
+            false,
+        ),
+        case_y(
+            11,
+            vec![
+                Snap { b: 20 },
+                NearDuplicate {
+                    point: 10945,
+                    e: 33,
+                    dir: [-121, -59, 108],
+                },
+            ],
+            None,
+            false,
+        ),
+        case_y(
+            192,
+            vec![
+                Perturb {
+                    point: 54038,
+                    e: 44,
+                    dir: [121, -82, 34],
+                },
+                Tiny {
+                    point: 43023,
+                    e: 116,
+                },
+                Tiny {
+                    point: 13328,
+                    e: 104,
+                },
+                Tiny {
+                    point: 44784,
+                    e: 160,
+                },
+                Tiny {
+                    point: 24945,
+                    e: 123,
+                },
+                Perturb {
+                    point: 48480,
+                    e: 241,
+                    dir: [68, -113, -55],
+                },
+            ],
+            None,
+            true,
+        ),
+        case_y(
+            77,
+            vec![
+                Tiny {
+                    point: 55145,
+                    e: 82,
+                },
+                NearDuplicate {
+                    point: 17013,
+                    e: 130,
+                    dir: [71, -3, 44],
+                },
+                Tiny {
+                    point: 22487,
+                    e: 202,
+                },
+            ],
+            None,
+            false,
+        ),
+        case_y(
+            119,
+            vec![NearDuplicate {
+                point: 45847,
+                e: 47,
+                dir: [-70, -53, -2],
+            }],
+            None,
+            false,
+        ),
+    ];
+    for (k, c) in cases.iter().enumerate() {
+        let m = mesh(c).unwrap_or_else(|e| panic!("case {k}: {e}"));
+        assert!(m.complete, "case {k}");
+    }
+}
+
+/// Tiny segments a few ulps of their coordinates long, beside the pieces of another segment
+/// (interior ones with `-Y`, or after a translation to 1e12 or a scale to 1e27): the edge's
+/// triangle on one side is thinner than any float point near the split point can enter, so
+/// no point inside both triangles exists ("splitting segment … LostWalk", e.g. seed 1 run
+/// 1630, seed 4 run 9509). The split point is now taken inside the other triangle, the edge
+/// kept as a wall until the split retires it.
+#[test]
+fn split_point_beside_a_sliver_goes_into_the_other_triangle() {
+    let cases = [
+        case_y(
+            86,
+            vec![
+                Tiny { point: 33839, e: 1 },
+                Scale { e: 104 },
+                Tiny {
+                    point: 28366,
+                    e: 118,
+                },
+            ],
+            Some(74),
+            true,
+        ),
+        case_y(
+            63,
+            vec![
+                Tiny {
+                    point: 7221,
+                    e: 152,
+                },
+                NearDuplicate {
+                    point: 30694,
+                    e: 134,
+                    dir: [-70, 43, 65],
+                },
+                Tiny {
+                    point: 19260,
+                    e: 164,
+                },
+                Tiny {
+                    point: 21279,
+                    e: 191,
+                },
+            ],
+            None,
+            true,
+        ),
+        case_y(
+            225,
+            vec![
+                Tiny {
+                    point: 61350,
+                    e: 121,
+                },
+                Scale { e: 179 },
+                Tiny {
+                    point: 5328,
+                    e: 115,
+                },
+            ],
+            None,
+            true,
+        ),
+        case_y(
+            97,
+            vec![
+                Tiny {
+                    point: 36254,
+                    e: 186,
+                },
+                NearDuplicate {
+                    point: 45879,
+                    e: 194,
+                    dir: [-78, 9, 35],
+                },
+                Translate {
+                    e: 104,
+                    dir: [47, -71, -35],
+                },
+                Tiny {
+                    point: 6795,
+                    e: 227,
+                },
+            ],
+            None,
+            false,
+        ),
+    ];
+    for (k, c) in cases.iter().enumerate() {
+        let m = mesh(c).unwrap_or_else(|e| panic!("case {k}: {e}"));
+        assert!(m.complete, "case {k}");
+    }
+}
+
+/// The L with a slit translated to 1e7, a segment of 1e-9 of its size (about an ulp of the
+/// coordinates) starting an ulp from the end of one of 1e-5: the longer segment passes
+/// within rounding through both ends of the shorter one, so a piece of it
+/// and the shorter segment shared one edge. Splitting the piece (for `-q`) split the edge
+/// and left the other subsegment's edge missing (campaign seed 1 run 4942, "subsegment …
+/// is missing from the mesh"). An edge now carries one subsegment: the second to arrive
+/// is retired.
+#[test]
+fn segments_sharing_an_edge_within_rounding_split_together() {
+    for y in [true, false] {
+        for angle in [Some(193), None] {
+            let c = case_y(
+                220,
+                vec![
+                    Translate {
+                        e: 159,
+                        dir: [-103, 69, -28],
+                    },
+                    Tiny {
+                        point: 20967,
+                        e: 219,
+                    },
+                    Tiny {
+                        point: 32378,
+                        e: 247,
+                    },
+                ],
+                angle,
+                y,
+            );
+            let m = mesh(&c).unwrap_or_else(|e| panic!("-Y {y}, angle {angle:?}: {e}"));
+            // Both input segments' ends are in the mesh and every segment piece is an edge
+            // (checked by `mesh`); without an angle bound the run completes.
+            assert!(angle.is_some() || m.complete);
+            for v in [8u32, 9, 10, 11] {
+                assert!(m.segments.iter().flatten().any(|&w| w == v), "vertex {v}");
+            }
+        }
+    }
+}

@@ -277,6 +277,27 @@ impl<'a> Refiner<'a> {
             if a == NONE {
                 continue;
             }
+            if let Some(h) = self.cdt.find_edge(a, b) {
+                // Another subsegment already on this edge: two input segments run within
+                // rounding of each other here (a vertex of one became a vertex of the other)
+                // and share the edge. One subsegment per edge: otherwise splitting one would
+                // leave the other's edge missing. The input segment's piece is kept over a
+                // hull edge's.
+                let t = self.cdt.seg_at(h);
+                if t != NONE && t != s {
+                    let other = self.cdt.segs[t as usize];
+                    if other.a != NONE && (other.a == b || other.b == b) {
+                        let keep_s = other.input == NONE && self.cdt.segs[s as usize].input != NONE;
+                        let retire = if keep_s { t } else { s };
+                        self.cdt.segs[retire as usize].a = NONE;
+                        if keep_s {
+                            self.cdt.set_seg(h, s);
+                        } else {
+                            continue;
+                        }
+                    }
+                }
+            }
             let h = match self.cdt.insert_segment(s) {
                 Recovery::Edge(h) => {
                     self.queue_new_triangles();
@@ -506,6 +527,118 @@ impl<'a> Refiner<'a> {
         ]
     }
 
+    /// A float point near `m` (the rounded split point of the edge on half-edge `h`) that
+    /// splits the edge, when `m` itself fell outside the edge's two triangles (past a
+    /// neighbour thinner than its rounding, typically a piece of the same input segment bent
+    /// by an ulp). With `side` `None`, the point sees every outer edge of the two triangles
+    /// strictly and lies on the edge's line or on the side of a triangle where the other side
+    /// has none. With `side` `Some(e)`, it lies strictly inside the triangle of half-edge
+    /// `e` only (the other one being too thin): inserted from there, the edge stays as a wall
+    /// and the segment bends through the point by rounding, as split points on slanted
+    /// segments do. Either way it projects strictly inside the edge. Every test is exact.
+    /// Candidates fix one coordinate at `m`'s or a few units in the last place beside it,
+    /// take the other from the edge's line and step it by a few units in the last place; the
+    /// one nearest the line wins. `None` when no candidate qualifies.
+    fn split_point_inside(&self, h: u32, m: [f64; 2], side: Option<u32>) -> Option<[f64; 2]> {
+        let cdt = &self.cdt;
+        let (a, b) = cdt.edge_ends(h);
+        let (pa, pb) = (cdt.pts[a as usize], cdt.pts[b as usize]);
+        // Edges to be seen strictly, and edges to be seen or lain on.
+        let mut strict: Vec<([f64; 2], [f64; 2])> = Vec::new();
+        let mut weak: Vec<([f64; 2], [f64; 2])> = Vec::new();
+        let real = |e: u32| e != NONE && cdt.apex(e) != cdt.ghost;
+        for (e, other) in [(h, cdt.twin(h)), (cdt.twin(h), h)] {
+            if !real(e) || side.is_some_and(|f| f != e) {
+                continue;
+            }
+            let (u, w) = cdt.edge_ends(e);
+            let c = cdt.apex(e);
+            let (pu, pw, pc) = (
+                cdt.pts[u as usize],
+                cdt.pts[w as usize],
+                cdt.pts[c as usize],
+            );
+            strict.push((pw, pc));
+            strict.push((pc, pu));
+            if side.is_some() {
+                strict.push((pu, pw));
+            } else if !real(other) {
+                weak.push((pu, pw));
+            }
+        }
+        if strict.is_empty() {
+            return None;
+        }
+        let ok = |q: [f64; 2]| {
+            q != pa
+                && q != pb
+                && encroaches(pa, pb, q)
+                && strict.iter().all(|&(u, w)| orient2d(u, w, q) > 0.0)
+                && weak.iter().all(|&(u, w)| orient2d(u, w, q) >= 0.0)
+        };
+        let mut best: Option<(f64, [f64; 2])> = None;
+        for k in 0..2 {
+            let o = 1 - k;
+            if pb[k] == pa[k] {
+                continue;
+            }
+            for i in -2i64..=2 {
+                let x = ulp_step(m[k], i);
+                let y0 = pa[o] + (x - pa[k]) * ((pb[o] - pa[o]) / (pb[k] - pa[k]));
+                for j in -4i64..=4 {
+                    let mut q = [0.0; 2];
+                    q[k] = x;
+                    q[o] = ulp_step(y0, j);
+                    if !ok(q) {
+                        continue;
+                    }
+                    let off = orient2d(pa, pb, q).abs();
+                    if best.map_or(true, |(d, _)| off < d) {
+                        best = Some((off, q));
+                    }
+                }
+            }
+        }
+        best.map(|(_, q)| q)
+    }
+
+    /// Inserts a split point of segment `s` (its edge on half-edge `h`) near `m`, whose
+    /// insertion was refused: inside both triangles of the edge if a float point there can
+    /// be found, else inside one of them with the edge kept as a wall for now
+    /// (`split_at_vertex` then retires it). `None` when neither works.
+    fn split_nearby(&mut self, s: SegId, h: u32, m: [f64; 2]) -> Option<Inserted> {
+        let input = self.cdt.segs[s as usize].input;
+        let fine = |r: Inserted| !matches!(r, Inserted::OnSegment(_) | Inserted::LostWalk);
+        if let Some(q) = self.split_point_inside(h, m, None) {
+            let r = self
+                .cdt
+                .insert(q, Start::SplitEdge(h), Mode::Force, input, None);
+            if fine(r) {
+                return Some(r);
+            }
+        }
+        for e in [h, self.cdt.twin(h)] {
+            if e == NONE {
+                continue;
+            }
+            let Some(q) = self.split_point_inside(h, m, Some(e)) else {
+                continue;
+            };
+            // The point encroaches `s` itself, which it is about to split: not a reason to
+            // queue it again.
+            let queued = self.cdt.seg_queued[s as usize];
+            self.cdt.seg_queued[s as usize] = true;
+            let r = self
+                .cdt
+                .insert(q, Start::Walk(e / 3), Mode::Force, input, None);
+            self.cdt.seg_queued[s as usize] = queued;
+            if fine(r) {
+                return Some(r);
+            }
+        }
+        None
+    }
+
     fn split_segment(&mut self, s: SegId) -> Result<(), Error> {
         let Seg {
             a, b, input, fixed, ..
@@ -574,7 +707,11 @@ impl<'a> Refiner<'a> {
             Some(h) => Start::SplitEdge(h),
             None => Start::Walk(self.cdt.vtri[a as usize]),
         };
-        let mv = match self.cdt.insert(m, start, Mode::Force, input, None) {
+        let mut got = self.cdt.insert(m, start, Mode::Force, input, None);
+        if let (Inserted::OnSegment(_) | Inserted::LostWalk, Start::SplitEdge(h)) = (got, start) {
+            got = self.split_nearby(s, h, m).unwrap_or(got);
+        }
+        let mv = match got {
             Inserted::Yes(v) => v,
             // The rounded split point is an existing vertex lying (within rounding) on the
             // segment: split there instead.
@@ -815,4 +952,28 @@ impl<'a> Refiner<'a> {
         self.refining = false;
         Ok(self.cdt.pts.len() > before)
     }
+}
+
+/// `x` moved by `k` units in the last place (toward +∞ for `k > 0`): the neighbouring floats
+/// [`Refiner::split_point_inside`] tries. Infinities and NaN stay as they are.
+fn ulp_step(x: f64, k: i64) -> f64 {
+    if !x.is_finite() {
+        return x;
+    }
+    let mut y = x;
+    for _ in 0..k.unsigned_abs() {
+        let up = k > 0;
+        y = if y == 0.0 {
+            if up {
+                f64::from_bits(1)
+            } else {
+                -f64::from_bits(1)
+            }
+        } else if (y > 0.0) == up {
+            f64::from_bits(y.to_bits() + 1)
+        } else {
+            f64::from_bits(y.to_bits() - 1)
+        };
+    }
+    y
 }

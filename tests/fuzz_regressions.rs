@@ -7,6 +7,17 @@ mod mutate;
 
 use mutate::Mutation::*;
 
+/// Runs `f` on its own thread and returns its answer, failing the test when none comes within
+/// `secs` seconds (a hang must not stall the suite).
+fn within<T: Send + 'static>(secs: u64, f: impl FnOnce() -> T + Send + 'static) -> T {
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = tx.send(f());
+    });
+    rx.recv_timeout(std::time::Duration::from_secs(secs))
+        .unwrap_or_else(|_| panic!("no answer within {secs} s"))
+}
+
 /// The star with a segment of 1e-11 of its size added at an inner corner, and a tip moved by
 /// 1e-3: the mesh came back as a success with a vertex inside a triangle's circumcircle (the
 /// final check then only looked at the structure). Now the local empty-circle rule is part of
@@ -53,13 +64,7 @@ fn scaled_cube_with_a_small_facet_terminates() {
         e: 169,
     };
     let scaled = case(vec![tiny, Scale { e: 66 }]);
-    let (tx, rx) = std::sync::mpsc::channel();
-    std::thread::spawn(move || {
-        let _ = tx.send(scaled.run());
-    });
-    let r = rx
-        .recv_timeout(std::time::Duration::from_secs(20))
-        .expect("no answer within 20 s");
+    let r = within(20, move || scaled.run());
     let m = r.expect("the scaled cube is meshed");
     m.validate().unwrap();
     let unscaled = case(vec![tiny]).run().unwrap();
@@ -91,13 +96,7 @@ fn near_coincident_tiny_facets_end_within_the_budget() {
         ratio: None,
         keep_surface: false,
     };
-    let (tx, rx) = std::sync::mpsc::channel();
-    std::thread::spawn(move || {
-        let _ = tx.send(case.run());
-    });
-    let r = rx
-        .recv_timeout(std::time::Duration::from_secs(60))
-        .expect("no answer within 60 s");
+    let r = within(60, move || case.run());
     match r {
         Ok(m) => m.validate().unwrap(),
         Err(idmesh::Error::Internal(e)) => assert!(e.contains("work budget"), "{e}"),
@@ -147,14 +146,7 @@ fn segment_hugging_the_boundary_terminates() {
         angle: None,
         no_boundary_steiner: false,
     };
-    let (tx, rx) = std::sync::mpsc::channel();
-    std::thread::spawn(move || {
-        let _ = tx.send(case.run());
-    });
-    let m = rx
-        .recv_timeout(std::time::Duration::from_secs(20))
-        .expect("no answer within 20 s")
-        .unwrap();
+    let m = within(20, move || case.run()).unwrap();
     assert!(!m.complete, "the Steiner budget must be reached");
     assert!(m.steiner_points <= 20_100, "{}", m.steiner_points);
     m.validate().unwrap();
@@ -239,13 +231,7 @@ fn tiny_facet_above_a_corner_ends_promptly() {
         ratio: None,
         keep_surface: false,
     };
-    let (tx, rx) = std::sync::mpsc::channel();
-    std::thread::spawn(move || {
-        let _ = tx.send(case.run());
-    });
-    let r = rx
-        .recv_timeout(std::time::Duration::from_secs(20))
-        .expect("no answer within 20 s");
+    let r = within(20, move || case.run());
     match r {
         Ok(m) => m.validate().unwrap(),
         Err(e) => assert!(!matches!(e, idmesh::Error::Internal(_)), "{e}"),

@@ -960,20 +960,5 @@ fn ulp_step(x: f64, k: i64) -> f64 {
     if !x.is_finite() {
         return x;
     }
-    let mut y = x;
-    for _ in 0..k.unsigned_abs() {
-        let up = k > 0;
-        y = if y == 0.0 {
-            if up {
-                f64::from_bits(1)
-            } else {
-                -f64::from_bits(1)
-            }
-        } else if (y > 0.0) == up {
-            f64::from_bits(y.to_bits() + 1)
-        } else {
-            f64::from_bits(y.to_bits() - 1)
-        };
-    }
-    y
+    (0..k.unsigned_abs()).fold(x, |y, _| crate::geometry::next_float(y, k > 0))
 }

@@ -899,7 +899,8 @@ impl Mesher<'_> {
 
     /// The error for a subface `v` of facet `fid` that conformity needs split but the size
     /// floor forbids: the input point nearest to it off the facet is too close to the facet
-    /// (an input error naming both), or, should every input point be on the facet, an
+    /// (an input error naming both) when it lies within 2^8 size floors of the facet's plane;
+    /// otherwise (no input point that close: the floor was reached for another reason) an
     /// internal error saying `what`.
     fn too_close(&self, v: [u32; 3], fid: u32, what: &str) -> Error {
         let c = v.map(|x| self.pts[x as usize]);
@@ -921,6 +922,9 @@ impl Mesher<'_> {
         let distance = (glam::DVec3::from_array(self.pts[point as usize]) - a)
             .dot(n)
             .abs();
+        if distance.is_nan() || distance * distance >= self.floor2 * 65536.0 {
+            return Error::Internal(format!("subface {v:?} of facet {fid} {what}"));
+        }
         Error::Input(crate::error::InputError::PointTooCloseToFacet {
             point: point as usize,
             facet: fid as usize,

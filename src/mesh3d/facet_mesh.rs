@@ -536,16 +536,12 @@ impl FacetMesh {
         on_one_edge: &dyn Fn([u32; 3]) -> bool,
         in_3d: &dyn Fn([u32; 3]) -> bool,
     ) -> Option<FacetChange> {
-        // The edge's half-edge found may belong to the triangle on its other side.
+        // Only when the half-edge found is `v`'s own (not its neighbour's across `v0 v1`):
+        // following the 3D mesh from both sides flipped more and left a 3.6° sliver on a domed
+        // prism (`sliver3d::hard_slivers_get_more_candidates`); either way, `None` only means
+        // the subface is split as before.
         let h = self.find_half_edge(v[0], v[1])?;
-        let mut t = h / 3;
-        if !self.tv[t as usize].contains(&v[2]) {
-            let o = self.tn[t as usize][(h % 3) as usize];
-            if o == NONE {
-                return None;
-            }
-            t = o / 3;
-        }
+        let t = h / 3;
         let tv = self.tv[t as usize];
         if !self.inside[t as usize] || !v.iter().all(|x| tv.contains(x)) {
             return None;

@@ -84,6 +84,8 @@ fn main() {
     let seed: u64 = args[2].parse().expect("SEED");
     let runs: u64 = args[3].parse().expect("RUNS");
     let limit = Duration::from_secs(args.get(4).map_or(20, |s| s.parse().expect("TIME-LIMIT-S")));
+    // IDMESH_CAMPAIGN_ALL=1 lists every run, to compare two builds run by run.
+    let all = std::env::var_os("IDMESH_CAMPAIGN_ALL").is_some();
     let mut rng = Rng(seed);
     let mut counts: BTreeMap<String, u64> = BTreeMap::new();
     let mut bytes = vec![0u8; 256];
@@ -125,7 +127,7 @@ fn main() {
             Ok(o) => o,
             Err(_) => format!("HANG (no answer in {} s)", limit.as_secs()),
         };
-        if !got.starts_with("ok") && got != "input error" {
+        if all || (!got.starts_with("ok") && got != "input error") {
             println!("run {run}: {got}\n  case: {desc}");
         }
         let hang = got.starts_with("HANG");

@@ -211,14 +211,9 @@ fn tiny_facet_next_to_a_hole_corner_is_meshed() {
 
 /// The cube with a hole, scaled to 1e-6, with a facet 1e-13 across added 1e-14 above its top
 /// face at the corner (0, 0, 1e-6), `-p` with a Steiner budget of 20,000 (3D campaign seed 2,
-/// run 3968). It used to end in "internal error: subface … cannot be split" after 1.5 s; since
-/// facet meshes follow the 3D mesh, conformity recovery there runs on (segment splits at the
-/// corner, each slower than the last) and takes well over 20 s to reach the budget. Ignored
-/// until the cascade is bounded (issue 14).
-#[test]
-#[ignore]
-fn tiny_facet_above_a_corner_ends_promptly() {
-    let case = mutate::Case3 {
+/// run 3968).
+fn tiny_facet_above_a_corner() -> mutate::Case3 {
+    mutate::Case3 {
         seed: 88,
         muts: vec![
             Scale { e: 124 },
@@ -230,9 +225,30 @@ fn tiny_facet_above_a_corner_ends_promptly() {
         ],
         ratio: None,
         keep_surface: false,
-    };
-    let r = within(20, move || case.run());
-    match r {
+    }
+}
+
+/// It used to take well over 20 s to reach the budget: present subsegments below the size
+/// floor were split for their encroachers (down to 1e-22, each split slower than the last), and
+/// a subface circumcentre outside the tiny facet was inserted as a facet point when its
+/// conflict region met no subsegment. Now the run ends in about 2 s; a mesh, if any, validates.
+#[test]
+fn tiny_facet_above_a_corner_ends_promptly() {
+    let case = tiny_facet_above_a_corner();
+    if let Ok(m) = within(20, move || case.run()) {
+        m.validate().unwrap();
+    }
+}
+
+/// The same input still ends in "internal error: subface … is too small to split": the tiny
+/// facet's Steiner points round off its slanted plane by 1e-22, and on its nearly cocircular
+/// subfaces that decides which are in the 3D mesh, so subfaces below 1e-15 go missing over and
+/// over. Ignored until the facet mesh follows the 3D mesh there (issue 14).
+#[test]
+#[ignore]
+fn tiny_facet_above_a_corner_is_meshed() {
+    let case = tiny_facet_above_a_corner();
+    match within(20, move || case.run()) {
         Ok(m) => m.validate().unwrap(),
         Err(e) => assert!(!matches!(e, idmesh::Error::Internal(_)), "{e}"),
     }

@@ -284,8 +284,9 @@ impl FacetMesh {
     /// facet mesh (and into the 3D mesh as a facet point). Such a point encroaches the
     /// boundary subsegments of the region that face it: they are returned to be split first
     /// (paper §4.1: the facet waits until the segment is split), as Ruppert does when a
-    /// circumcentre falls outside the domain. `Ok` when `p` is reached or `origin` is not a
-    /// triangle of this mesh (then [`FacetMesh::insert`] decides).
+    /// circumcentre falls outside the domain (the list is empty when `p` lies outside the
+    /// facet but the region met no subsegment). `Ok` when `p` is reached, or lies inside the
+    /// facet, or `origin` is not a triangle of this mesh (then [`FacetMesh::insert`] decides).
     pub fn check_reach(
         &mut self,
         origin: [u32; 3],
@@ -346,7 +347,12 @@ impl FacetMesh {
         if facing.is_empty() {
             facing = other;
         }
-        if facing.is_empty() {
+        // No subsegment met: the region ran into triangles out of conflict with `p` (a facet
+        // mesh that follows the 3D mesh on nearly cocircular quadrilaterals is not quite
+        // Delaunay in its own plane, so the conflict region need not reach `p`). Then `p` is
+        // inserted only if it lies inside the facet; outside it, an empty list tells the
+        // caller to split inside the face instead.
+        if facing.is_empty() && target.is_some_and(|t| self.inside[t as usize]) {
             return Ok(());
         }
         facing.sort_unstable();

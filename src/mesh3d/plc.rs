@@ -869,13 +869,22 @@ impl Mesher<'_> {
                     tried_centroid = true;
                     self.pts[m as usize] = centroid;
                 }
-                Err(FacetInsertError::Duplicate(d)) if v.contains(&d) => {
+                // The centroid rounds onto a corner (a face at the precision limit), or onto
+                // a vertex of another feature that lies on the face within rounding.
+                Err(FacetInsertError::Duplicate(d)) => {
                     self.pts.pop();
+                    let what = if v.contains(&d) {
+                        "a corner"
+                    } else {
+                        "another vertex"
+                    };
                     return Err(self.too_close(
                         v,
                         fid,
-                        "is too small to split (precision exhausted: its centroid rounds onto \
-                         a corner)",
+                        &format!(
+                            "is too small to split (precision exhausted: its centroid rounds \
+                             onto {what})"
+                        ),
                     ));
                 }
                 Err(e) => {

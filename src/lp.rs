@@ -13,29 +13,37 @@ pub fn chebyshev_center(
     planes: &[([f64; 3], f64)],
     box_half: f64,
 ) -> Option<([f64; 3], f64)> {
-    // Variables z = (y+, y-, r) >= 0 with y = x - origin = y+ - y-.
-    // Rows: n·y + |n| r <= d, and ±y_k <= box_half.
+    // Variables z = (u+, u-, ρ) >= 0 with x - origin = box_half · (u+ - u-) and r = box_half · ρ;
+    // rows n̂·u + ρ <= d / (|n| box_half) and ±u_k <= 1. Unit normals and lengths in units of
+    // `box_half` keep every coefficient near 1, so the pivot tolerances mean the same at any
+    // scale and position of the input (with raw normals, a star 1e-9 across had plane rows of
+    // 1e-18 that the tolerance took for zeros).
+    if !(box_half > 0.0 && box_half.is_finite()) {
+        return None;
+    }
     let mut rows: Vec<([f64; 7], f64)> = Vec::with_capacity(planes.len() + 6);
     for &(n, d) in planes {
         let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-        if len == 0.0 || !len.is_finite() || !d.is_finite() {
+        let rhs = d.max(0.0) / len / box_half;
+        if len == 0.0 || !len.is_finite() || !rhs.is_finite() {
             continue;
         }
-        rows.push(([n[0], n[1], n[2], -n[0], -n[1], -n[2], len], d.max(0.0)));
+        let u = n.map(|c| c / len);
+        rows.push(([u[0], u[1], u[2], -u[0], -u[1], -u[2], 1.0], rhs));
     }
     for k in 0..3 {
         let mut a = [0.0; 7];
         a[k] = 1.0;
         a[k + 3] = -1.0;
-        rows.push((a, box_half));
+        rows.push((a, 1.0));
         let mut b = [0.0; 7];
         b[k] = -1.0;
         b[k + 3] = 1.0;
-        rows.push((b, box_half));
+        rows.push((b, 1.0));
     }
     let z = maximize(&[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0], &rows)?;
-    let x = [0, 1, 2].map(|k| origin[k] + (z[k] - z[k + 3]));
-    (z[6] > 0.0).then_some((x, z[6]))
+    let x = [0, 1, 2].map(|k| origin[k] + box_half * (z[k] - z[k + 3]));
+    (z[6] > 0.0).then_some((x, box_half * z[6]))
 }
 
 /// Maximizes `c · z` subject to `a_i · z <= b_i` (every `b_i >= 0`, so `z = 0` is feasible)
@@ -128,6 +136,32 @@ mod tests {
             assert!((x[k] - 0.5).abs() < 1e-9, "{x:?}");
         }
         assert!((r - 0.5).abs() < 1e-9);
+    }
+
+    #[test]
+    fn centre_is_scale_and_translation_invariant() {
+        // The cube of the test above, scaled and moved: the same centre, scaled and moved
+        // (the pivot tolerances once took the plane rows of a 1e-9 cube for zeros).
+        for (s, o) in [
+            (1e-9, [0.0; 3]),
+            (1e-24, [0.0; 3]),
+            (1e12, [0.0; 3]),
+            (1e-6, [1e3, -2e3, 5e2]),
+        ] {
+            let planes = [
+                ([-s, 0.0, 0.0], 0.0),
+                ([s, 0.0, 0.0], s * s),
+                ([0.0, -s, 0.0], 0.0),
+                ([0.0, s, 0.0], s * s),
+                ([0.0, 0.0, -2.0 * s], 0.0),
+                ([0.0, 0.0, s], s * s),
+            ];
+            let (x, r) = chebyshev_center(o, &planes, 10.0 * s).unwrap();
+            for k in 0..3 {
+                assert!((x[k] - o[k] - 0.5 * s).abs() < 1e-6 * s, "{s} {x:?}");
+            }
+            assert!((r - 0.5 * s).abs() < 1e-6 * s, "{s} {r}");
+        }
     }
 
     #[test]

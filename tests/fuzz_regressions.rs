@@ -209,6 +209,36 @@ fn tiny_facet_next_to_a_hole_corner_is_meshed() {
     }
 }
 
+/// `-Y` on shapes with a tiny facet added, scaled by 1e-9, 1e-21 and 1e-24 (3D campaigns
+/// seeds 1 and 2: 20 of 8,000 runs): "internal error: cannot take the Steiner point off the
+/// surface: no point of its wedge sees the whole group", while the unscaled inputs meshed. The
+/// linear program that finds the deepest point of a star's kernel took the plane rows of a
+/// star 1e-9 across for zeros; it now works in units of the star's size. Each scaled input
+/// gives as many tets as the unscaled one.
+#[test]
+fn keep_surface_is_scale_invariant() {
+    for (seed, point, e, scale) in [
+        (97, 28165, 65, 21),
+        (33, 50098, 203, 250),
+        (241, 55987, 230, 192),
+    ] {
+        let run = |muts: Vec<mutate::Mutation>| {
+            let case = mutate::Case3 {
+                seed,
+                muts,
+                ratio: None,
+                keep_surface: true,
+            };
+            let m = case.run().unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+            m.validate().unwrap();
+            m.tets.len()
+        };
+        let plain = run(vec![Tiny { point, e }]);
+        let scaled = run(vec![Tiny { point, e }, Scale { e: scale }]);
+        assert_eq!(plain, scaled, "seed {seed}");
+    }
+}
+
 /// The cube with a hole, scaled to 1e-6, with a facet 1e-13 across added 1e-14 above its top
 /// face at the corner (0, 0, 1e-6), `-p` with a Steiner budget of 20,000 (3D campaign seed 2,
 /// run 3968).

@@ -66,6 +66,14 @@ pub(super) fn run(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
             break;
         }
     }
+    // A split point rounded beside its edge can leave an edge that is not locally Delaunay
+    // (`Cdt::unsettled`): flip such edges now that no point is added any more (flipping at
+    // once leaves chain slivers that later splits of the chain cannot be seeded from). The
+    // mesh is then constrained Delaunay, and, with no subsegment encroached (the sweep
+    // above), Delaunay.
+    if r.cdt.unsettled {
+        r.cdt.legalize_all();
+    }
     stage(Stage::Output, || (0, 0))?;
     let mesh = output(&mut r, n, pslg, opts)?;
     // Never hand back a broken mesh as a success: the structure and the local empty-circle

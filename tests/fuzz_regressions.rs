@@ -253,13 +253,16 @@ fn tiny_facet_above_a_corner_ends_promptly() {
 /// Meshes a 2D campaign case and asserts a complete mesh that passes the exact checks, and
 /// more: no vertex at all inside any triangle's circumcircle (exact, every pair; `validate`
 /// forgives a chain's own rounded points, this does not).
-fn meshes_delaunay(case: mutate::Case2) {
+/// `scale`, a power of two, multiplies the coordinates first (exactly) where they are so small
+/// that the in-circle test would underflow.
+fn meshes_delaunay(case: mutate::Case2, scale: f64) {
     let m = within(20, move || case.run()).unwrap_or_else(|e| panic!("{e}"));
     assert!(m.complete);
     m.validate().unwrap();
+    let vertices: Vec<[f64; 2]> = m.vertices.iter().map(|p| p.map(|x| x * scale)).collect();
     for (t, tri) in m.triangles.iter().enumerate() {
-        let [a, b, c] = tri.map(|v| m.vertices[v as usize]);
-        for (v, &p) in m.vertices.iter().enumerate() {
+        let [a, b, c] = tri.map(|v| vertices[v as usize]);
+        for (v, &p) in vertices.iter().enumerate() {
             assert!(
                 tri.contains(&(v as u32)) || idmesh::predicates::incircle(a, b, c, p) <= 0.0,
                 "vertex {v} inside the circumcircle of triangle {t}"
@@ -273,27 +276,30 @@ fn meshes_delaunay(case: mutate::Case2) {
 /// triangle on segment 4's chain, 20 ulps from the corner.
 #[test]
 fn point_two_ulps_from_a_star_corner_is_meshed() {
-    meshes_delaunay(mutate::Case2 {
-        seed: 95,
-        muts: vec![
-            Perturb {
-                point: 34758,
-                e: 58,
-                dir: [-101, -45, 72],
-            },
-            NearDuplicate {
-                point: 61215,
-                e: 200,
-                dir: [-85, -97, 15],
-            },
-            Translate {
-                e: 109,
-                dir: [9, -104, -68],
-            },
-        ],
-        angle: None,
-        no_boundary_steiner: false,
-    });
+    meshes_delaunay(
+        mutate::Case2 {
+            seed: 95,
+            muts: vec![
+                Perturb {
+                    point: 34758,
+                    e: 58,
+                    dir: [-101, -45, 72],
+                },
+                NearDuplicate {
+                    point: 61215,
+                    e: 200,
+                    dir: [-85, -97, 15],
+                },
+                Translate {
+                    e: 109,
+                    dir: [9, -104, -68],
+                },
+            ],
+            angle: None,
+            no_boundary_steiner: false,
+        },
+        1.0,
+    );
 }
 
 /// The star with a point 1.4e-15 from its inner corner 5 (on segment 4 within rounding) and
@@ -302,19 +308,22 @@ fn point_two_ulps_from_a_star_corner_is_meshed() {
 /// of segment 4 at corner 5.
 #[test]
 fn point_near_a_star_corner_with_a_tiny_segment_is_meshed() {
-    meshes_delaunay(mutate::Case2 {
-        seed: 140,
-        muts: vec![
-            NearDuplicate {
-                point: 55805,
-                e: 23,
-                dir: [-72, 65, 83],
-            },
-            Tiny { point: 2599, e: 29 },
-        ],
-        angle: None,
-        no_boundary_steiner: false,
-    });
+    meshes_delaunay(
+        mutate::Case2 {
+            seed: 140,
+            muts: vec![
+                NearDuplicate {
+                    point: 55805,
+                    e: 23,
+                    dir: [-72, 65, 83],
+                },
+                Tiny { point: 2599, e: 29 },
+            ],
+            angle: None,
+            no_boundary_steiner: false,
+        },
+        1.0,
+    );
 }
 
 /// The star with a segment of 1e-13 a thousand ulps from corner 1, translated by 1, and a
@@ -323,24 +332,59 @@ fn point_near_a_star_corner_with_a_tiny_segment_is_meshed() {
 /// corner 1.
 #[test]
 fn tiny_segment_next_to_a_star_corner_is_meshed() {
-    meshes_delaunay(mutate::Case2 {
-        seed: 113,
-        muts: vec![
-            Tiny {
-                point: 45591,
-                e: 83,
-            },
-            Translate {
-                e: 64,
-                dir: [24, -98, 41],
-            },
-            NearDuplicate {
-                point: 50559,
-                e: 51,
-                dir: [2, 92, -71],
-            },
-        ],
-        angle: None,
-        no_boundary_steiner: false,
-    });
+    meshes_delaunay(
+        mutate::Case2 {
+            seed: 113,
+            muts: vec![
+                Tiny {
+                    point: 45591,
+                    e: 83,
+                },
+                Translate {
+                    e: 64,
+                    dir: [24, -98, 41],
+                },
+                NearDuplicate {
+                    point: 50559,
+                    e: 51,
+                    dir: [2, 92, -71],
+                },
+            ],
+            angle: None,
+            no_boundary_steiner: false,
+        },
+        1.0,
+    );
+}
+
+/// The L with its slit scaled by 1e-27 three times and by 1e14 (coordinates of 1e-67), with
+/// segments of 1e-12 and 1e-7 of its size near corners 3 and 1 (2D campaign seed 8, run 5389):
+/// "vertex 25
+/// lies inside the circumcircle of triangle 16", of four exactly cocircular points (a square of
+/// 5e-68), as the exact in-circle test's smallest terms underflowed. Coordinates below 2^-128
+/// are now meshed and checked scaled up by a power of two.
+#[test]
+fn input_at_1e_minus_67_is_meshed() {
+    meshes_delaunay(
+        mutate::Case2 {
+            seed: 97,
+            muts: vec![
+                Scale { e: 186 },
+                Tiny {
+                    point: 56219,
+                    e: 190,
+                },
+                Scale { e: 247 },
+                Scale { e: 247 },
+                Scale { e: 166 },
+                Tiny {
+                    point: 42671,
+                    e: 113,
+                },
+            ],
+            angle: None,
+            no_boundary_steiner: false,
+        },
+        2f64.powi(220),
+    );
 }

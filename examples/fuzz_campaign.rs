@@ -10,6 +10,9 @@
 //! ```text
 //! cargo run --release --example fuzz_campaign -- 3d 1 10000 [time-limit-s]
 //! ```
+//!
+//! `RUNS` may also be a range `FIRST..END` (such as `1660..1661`): the cases before `FIRST`
+//! are drawn but not run, so one case of a campaign can be rerun alone.
 
 #[path = "../fuzz/fuzz_targets/mutate.rs"]
 mod mutate;
@@ -82,7 +85,10 @@ fn main() {
     }
     let mode = args[1].clone();
     let seed: u64 = args[2].parse().expect("SEED");
-    let runs: u64 = args[3].parse().expect("RUNS");
+    let (first, runs): (u64, u64) = match args[3].split_once("..") {
+        Some((a, b)) => (a.parse().expect("FIRST"), b.parse().expect("END")),
+        None => (0, args[3].parse().expect("RUNS")),
+    };
     let limit = Duration::from_secs(args.get(4).map_or(20, |s| s.parse().expect("TIME-LIMIT-S")));
     // IDMESH_CAMPAIGN_ALL=1 lists every run, to compare two builds run by run.
     let all = std::env::var_os("IDMESH_CAMPAIGN_ALL").is_some();
@@ -92,6 +98,9 @@ fn main() {
     for run in 0..runs {
         for b in bytes.iter_mut() {
             *b = rng.next() as u8;
+        }
+        if run < first {
+            continue;
         }
         let mut u = Unstructured::new(&bytes);
         let (tx, rx) = mpsc::channel();

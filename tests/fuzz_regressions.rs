@@ -283,3 +283,154 @@ fn tiny_facet_above_a_corner_is_meshed() {
         Err(e) => assert!(!matches!(e, idmesh::Error::Internal(_)), "{e}"),
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// 2D campaign, "vertex inside circumcircle" (issue 14): a point a few ulps to a thousand ulps
+// from a corner of the star makes the segments there split down to pieces a few hundred ulps
+// long. A segment split seeds its cavity with the edge's two triangles; a split point rounded
+// a hair beyond the edge, outside the circumcircle of the triangle there (a short edge and a
+// far apex: the circle's cap is thinner than the rounding), left a fan edge that was not
+// locally Delaunay, and the thin triangle's circle held vertices elsewhere, so the final
+// check refused the mesh ("internal error: output check failed"). Now such edges are flipped
+// once no point is added any more (`Cdt::legalize_all`), and the mesh, with no subsegment
+// encroached, is Delaunay.
+// ---------------------------------------------------------------------------------------------
+
+/// Meshes a 2D campaign case and asserts a complete mesh that passes the exact checks, and
+/// more: no vertex at all inside any triangle's circumcircle (exact, every pair; `validate`
+/// forgives a chain's own rounded points, this does not).
+/// `scale`, a power of two, multiplies the coordinates first (exactly) where they are so small
+/// that the in-circle test would underflow.
+fn meshes_delaunay(case: mutate::Case2, scale: f64) {
+    let m = within(20, move || case.run()).unwrap_or_else(|e| panic!("{e}"));
+    assert!(m.complete);
+    m.validate().unwrap();
+    let vertices: Vec<[f64; 2]> = m.vertices.iter().map(|p| p.map(|x| x * scale)).collect();
+    for (t, tri) in m.triangles.iter().enumerate() {
+        let [a, b, c] = tri.map(|v| vertices[v as usize]);
+        for (v, &p) in vertices.iter().enumerate() {
+            assert!(
+                tri.contains(&(v as u32)) || idmesh::predicates::incircle(a, b, c, p) <= 0.0,
+                "vertex {v} inside the circumcircle of triangle {t}"
+            );
+        }
+    }
+}
+
+/// The star translated by 1e5 with a point 2 ulps (in x) from its inner corner 5, outside
+/// the domain (2D campaign seed 2, run 1660): vertex 10 lay inside the circumcircle of a
+/// triangle on segment 4's chain, 20 ulps from the corner.
+#[test]
+fn point_two_ulps_from_a_star_corner_is_meshed() {
+    meshes_delaunay(
+        mutate::Case2 {
+            seed: 95,
+            muts: vec![
+                Perturb {
+                    point: 34758,
+                    e: 58,
+                    dir: [-101, -45, 72],
+                },
+                NearDuplicate {
+                    point: 61215,
+                    e: 200,
+                    dir: [-85, -97, 15],
+                },
+                Translate {
+                    e: 109,
+                    dir: [9, -104, -68],
+                },
+            ],
+            angle: None,
+            no_boundary_steiner: false,
+        },
+        1.0,
+    );
+}
+
+/// The star with a point 1.4e-15 from its inner corner 5 (on segment 4 within rounding) and
+/// a segment of 1e-13 at corner 3 (2D campaign seed 2, run 8568): split points of segment 3
+/// near corner 3 lay inside the circumcircle of the triangle from corner 3 to the 3e-13 piece
+/// of segment 4 at corner 5.
+#[test]
+fn point_near_a_star_corner_with_a_tiny_segment_is_meshed() {
+    meshes_delaunay(
+        mutate::Case2 {
+            seed: 140,
+            muts: vec![
+                NearDuplicate {
+                    point: 55805,
+                    e: 23,
+                    dir: [-72, 65, 83],
+                },
+                Tiny { point: 2599, e: 29 },
+            ],
+            angle: None,
+            no_boundary_steiner: false,
+        },
+        1.0,
+    );
+}
+
+/// The star with a segment of 1e-13 a thousand ulps from corner 1, translated by 1, and a
+/// point 1.5e-7 from corner 3 (2D campaign seed 5, run 3947): split points of segment 2 near
+/// corner 3 lay inside the circumcircle of the triangle from corner 3 to the 1e-14 piece at
+/// corner 1.
+#[test]
+fn tiny_segment_next_to_a_star_corner_is_meshed() {
+    meshes_delaunay(
+        mutate::Case2 {
+            seed: 113,
+            muts: vec![
+                Tiny {
+                    point: 45591,
+                    e: 83,
+                },
+                Translate {
+                    e: 64,
+                    dir: [24, -98, 41],
+                },
+                NearDuplicate {
+                    point: 50559,
+                    e: 51,
+                    dir: [2, 92, -71],
+                },
+            ],
+            angle: None,
+            no_boundary_steiner: false,
+        },
+        1.0,
+    );
+}
+
+/// The L with its slit scaled by 1e-27 three times and by 1e14 (coordinates of 1e-67), with
+/// segments of 1e-12 and 1e-7 of its size near corners 3 and 1 (2D campaign seed 8, run 5389):
+/// "vertex 25
+/// lies inside the circumcircle of triangle 16", of four exactly cocircular points (a square of
+/// 5e-68), as the exact in-circle test's smallest terms underflowed. Coordinates below 2^-128
+/// are now meshed and checked scaled up by a power of two.
+#[test]
+fn input_at_1e_minus_67_is_meshed() {
+    meshes_delaunay(
+        mutate::Case2 {
+            seed: 97,
+            muts: vec![
+                Scale { e: 186 },
+                Tiny {
+                    point: 56219,
+                    e: 190,
+                },
+                Scale { e: 247 },
+                Scale { e: 247 },
+                Scale { e: 166 },
+                Tiny {
+                    point: 42671,
+                    e: 113,
+                },
+            ],
+            angle: None,
+            no_boundary_steiner: false,
+        },
+        2f64.powi(220),
+    );
+}

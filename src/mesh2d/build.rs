@@ -4,6 +4,7 @@
 
 use super::refine::{segment_marker, Piece, Refiner, SegmentSteiner};
 use super::store::{Cdt, Inserted, Mode, Seg, Start, EXTERIOR, HOLE, NO_REGION};
+use super::validate::tiny_scale;
 use super::{Options, TriMesh, NONE};
 use crate::error::{Error, InputError};
 use crate::input2d::Pslg;
@@ -16,6 +17,63 @@ pub const MAX_MIN_ANGLE: f64 = 34.0;
 use crate::error::MAX_COORD;
 
 pub(super) fn run(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
+    let n = pslg.points.len();
+    stage(Stage::Reading, || (0, n as u64))?;
+    check_options(opts)?;
+    check_input(pslg)?;
+    let seeds = pslg
+        .holes
+        .iter()
+        .chain(pslg.regions.iter().map(|r| &r.point));
+    match tiny_scale(pslg.points.iter().chain(seeds)) {
+        Some(s) => run_scaled(pslg, opts, s),
+        None => mesh(pslg, opts),
+    }
+}
+
+/// Meshes an input whose coordinates are all below `2^-128` (see [`tiny_scale`]) scaled up
+/// by the power of two `s`: every decision is then the one the exact predicates would make
+/// without underflow (a scaling by a power of two changes no sign and no rounding of the
+/// constructions), and the mesh is scaled back. Input points are given back as they were;
+/// Steiner points are divided by `s`, exactly unless the quotient is subnormal, which is an
+/// error rather than a mesh that rounding may have broken. Areas (global, regional, the
+/// sizing test's) scale by `s²`.
+fn run_scaled(pslg: &Pslg, opts: &Options, s: f64) -> Result<TriMesh, Error> {
+    let up = |p: &mut [f64; 2]| *p = [p[0] * s, p[1] * s];
+    let mut g = pslg.clone();
+    g.points.iter_mut().for_each(up);
+    g.holes.iter_mut().for_each(up);
+    for r in &mut g.regions {
+        up(&mut r.point);
+        r.max_area = r.max_area.map(|a| a * s * s);
+    }
+    let mut o = opts.clone();
+    o.max_area = opts.max_area.map(|a| a * s * s);
+    if let Some(f) = opts.sizing.clone() {
+        let down = move |p: [f64; 2]| [p[0] / s, p[1] / s];
+        o.sizing = Some(std::sync::Arc::new(move |a, b, c, area| {
+            f(down(a), down(b), down(c), area / s / s)
+        }));
+    }
+    let mut m = mesh(&g, &o)?;
+    let n = pslg.points.len();
+    m.vertices[..n].copy_from_slice(&pslg.points);
+    for p in &mut m.vertices[n..] {
+        for x in p.iter_mut() {
+            let y = *x / s;
+            if y * s != *x {
+                return Err(Error::Internal(format!(
+                    "Steiner point coordinate {y:e} is too small to represent exactly"
+                )));
+            }
+            *x = y;
+        }
+    }
+    Ok(m)
+}
+
+/// The mesher proper, on checked input.
+fn mesh(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
     // Which segments may be split (Triangle's -YY, -Y, neither); one policy serves all three.
     let policy = if opts.no_segment_steiner {
         SegmentSteiner::Nowhere
@@ -25,9 +83,6 @@ pub(super) fn run(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
         SegmentSteiner::Anywhere
     };
     let n = pslg.points.len();
-    stage(Stage::Reading, || (0, n as u64))?;
-    check_options(opts)?;
-    check_input(pslg)?;
     stage(Stage::Delaunay, || (0, n as u64))?;
     let mut cdt = Cdt::new(&pslg.points);
     cdt.inseg_ends = pslg.segments.clone();
@@ -65,6 +120,14 @@ pub(super) fn run(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
         if !r.refine()? {
             break;
         }
+    }
+    // A split point rounded beside its edge can leave an edge that is not locally Delaunay
+    // (`Cdt::unsettled`): flip such edges now that no point is added any more (flipping at
+    // once leaves chain slivers that later splits of the chain cannot be seeded from). The
+    // mesh is then constrained Delaunay, and, with no subsegment encroached (the sweep
+    // above), Delaunay.
+    if r.cdt.unsettled {
+        r.cdt.legalize_all();
     }
     stage(Stage::Output, || (0, 0))?;
     let mesh = output(&mut r, n, pslg, opts)?;

@@ -1,6 +1,7 @@
 //! Lawson flips: restores the constrained Delaunay property after a wall is taken off an edge
 //! (a segment split at a vertex lying beside it within rounding), when that edge and the ones
-//! behind it may no longer be locally Delaunay.
+//! behind it may no longer be locally Delaunay, and, once meshing is done, wherever a rounded
+//! split point left an edge that is not ([`Cdt::legalize_all`]).
 
 use super::geometry::Geometry;
 use super::store::{next, prev, Cdt};
@@ -78,5 +79,46 @@ impl<G: Geometry> Cdt<G> {
         }
         self.rec.flips = stack;
         self.hint = h / 3;
+    }
+
+    /// Flips every edge that is not locally Delaunay and is no wall, until none is left (or
+    /// the budgets of [`Cdt::legalize`] run out); returns how many edges started a flip.
+    ///
+    /// Once every edge that is no wall is locally Delaunay the triangulation is constrained
+    /// Delaunay, and, when no subsegment is encroached by any vertex, Delaunay, of the float
+    /// points as they are, chains bent by rounding included (Shewchuk's lemma: walking from a
+    /// triangle toward a vertex inside its circumcircle, the circles of the triangles crossed
+    /// keep the vertex up to the first subsegment crossed, which the vertex or that last
+    /// triangle's apex then encroaches). An edge that is not locally Delaunay can always be
+    /// flipped: a vertex inside the circle across it makes the angles at it and at the apex
+    /// sum to more than 180 degrees, so the quadrilateral is strictly convex (the flip checks
+    /// it exactly all the same). Flips keep the union of the two triangles, so the domain and
+    /// every wall stay as they are.
+    pub fn legalize_all(&mut self) -> usize {
+        let mut started = 0;
+        for t in 0..self.num_slots() {
+            if !self.alive(t as u32) || self.is_ghost(t as u32) {
+                continue;
+            }
+            for i in 0..3 {
+                let h = (3 * t + i) as u32;
+                let tw = self.tn[t][i];
+                // Each edge once (from its lower half-edge); walls and open edges stay.
+                if self.ts[t][i] != NONE || tw == NONE || tw < h || self.is_ghost(tw / 3) {
+                    continue;
+                }
+                let (p, u, w) = (self.tv[t][i], self.tv[t][next(i)], self.tv[t][prev(i)]);
+                let q = self.tv[(tw / 3) as usize][(tw % 3) as usize];
+                if self
+                    .geom
+                    .incircle(self.p(p), self.p(u), self.p(w), self.p(q))
+                    > 0.0
+                {
+                    started += 1;
+                    self.legalize(h);
+                }
+            }
+        }
+        started
     }
 }

@@ -1,12 +1,14 @@
 //! The 2D mesher (paper §3): conforming Delaunay triangulation of a PSLG and Delaunay
 //! refinement to a minimum angle and maximum area.
 //!
-//! Pipeline: validate the input; insert every input point (Bowyer–Watson, BRIO/Hilbert order,
-//! walking point location); insert every segment as a constrained edge (no Steiner point);
-//! classify exterior, holes and regions by flooding up to segments and carve them away; split
-//! encroached segments until the constrained triangulation is Delaunay (paper Fig. 2, `Force`);
-//! then eliminate skinny and oversized triangles (paper Fig. 4, `Provisional` circumcenter /
-//! off-center insertion). With `no_boundary_steiner` (Triangle's `-Y`) boundary segments are
+//! Pipeline: validate the input (and scale it up by a power of two when its coordinates are
+//! so small that the exact predicates would underflow); insert every input point
+//! (Bowyer–Watson, BRIO/Hilbert order, walking point location); insert every segment as a
+//! constrained edge (no Steiner point); classify exterior, holes and regions by flooding up to
+//! segments and carve them away; split encroached segments until the constrained triangulation
+//! is Delaunay (paper Fig. 2, `Force`); then eliminate skinny and oversized triangles (paper
+//! Fig. 4, `Provisional` circumcenter / off-center insertion); flip the edges that rounded
+//! split points left not locally Delaunay. With `no_boundary_steiner` (Triangle's `-Y`) boundary segments are
 //! never split, with `no_segment_steiner` (`-YY`) no segment is, and the result is constrained
 //! Delaunay.
 //!

@@ -128,6 +128,11 @@ pub struct Cdt<G: Geometry = Plane> {
     vmark: Vec<TriId>,
     /// Whether the exterior and holes have been carved away.
     pub carved: bool,
+    /// Whether an insertion may have left an edge that is not locally Delaunay: a split
+    /// point's cavity seeded with a triangle the point is not in conflict with, or stopped
+    /// at an edge hidden from the point with a triangle in conflict behind it (both only for
+    /// points rounded off their edge). [`Cdt::legalize_all`] mends such edges.
+    pub unsettled: bool,
     /// Scratch space of constrained segment insertion (`recover.rs`).
     pub(super) rec: Scratch,
     /// The last triangle created (a walking hint).
@@ -216,6 +221,7 @@ impl<G: Geometry> Cdt<G> {
             inseg_ends: Vec::new(),
             vmark: Vec::new(),
             carved: false,
+            unsettled: false,
             rec: Default::default(),
             hint: 0,
             bulk_stack: Vec::new(),
@@ -928,6 +934,13 @@ impl<G: Geometry> Cdt<G> {
                     }
                     self.stamp[t as usize] = inside;
                     self.cavity.push(t);
+                    // A point on the edge is inside both circles; one rounded a hair beyond
+                    // the edge, past a cap thinner than the rounding (a short edge, a far
+                    // apex), is not, and the fan then has an edge to that apex that is not
+                    // locally Delaunay (2D campaign, issue 14).
+                    if !self.conflict(t, p) {
+                        self.unsettled = true;
+                    }
                 }
                 // The split point is computed in floating point and may round to just outside
                 // both triangles of the edge (beyond a third, nearly flat one): seed the
@@ -998,6 +1011,9 @@ impl<G: Geometry> Cdt<G> {
                     self.stamp[n as usize] = inside;
                     self.cavity.push(n);
                 } else {
+                    if !visible && st != outside && self.conflict(n, p) {
+                        self.unsettled = true;
+                    }
                     self.stamp[n as usize] = outside;
                     self.boundary.push(h);
                 }

@@ -479,3 +479,50 @@ fn constrained_insertion_of_a_long_segment() {
     c.validate().unwrap();
     assert!(c.steiner_points > 0);
 }
+
+/// Coordinates below 2^-128 are meshed scaled up by a power of two (`validate::tiny_scale`):
+/// the square with a hole at 2^-300 of its size, with a region's area bound, a global one and
+/// a sizing test, gets exactly the mesh of the unscaled square scaled down, and it validates
+/// (the in-circle test underflows on the raw coordinates).
+#[test]
+fn tiny_coordinates_mesh_as_their_scaled_up_copy() {
+    let s = 2f64.powi(-300);
+    let mut g = square_with_hole();
+    g.regions = vec![Region {
+        point: [0.1, 0.1],
+        attribute: 1.0,
+        max_area: Some(0.02),
+    }];
+    let sizing = |scale: f64| -> SizingFn {
+        Arc::new(move |a: [f64; 2], _b, _c, area| {
+            a[0] < 0.3 * scale && area > 0.004 * scale * scale
+        })
+    };
+    let o = Options {
+        min_angle: Some(30.0),
+        max_area: Some(0.05),
+        region_max_area: true,
+        sizing: Some(sizing(1.0)),
+        ..Default::default()
+    };
+    let mut tiny = g.clone();
+    for p in tiny.points.iter_mut().chain(tiny.holes.iter_mut()) {
+        *p = [p[0] * s, p[1] * s];
+    }
+    tiny.regions[0].point = [0.1 * s, 0.1 * s];
+    tiny.regions[0].max_area = Some(0.02 * s * s);
+    let ot = Options {
+        max_area: Some(0.05 * s * s),
+        sizing: Some(sizing(s)),
+        ..o.clone()
+    };
+    let m = triangulate(&g, &o).unwrap();
+    let mt = triangulate(&tiny, &ot).unwrap();
+    assert!(m.steiner_points > 20, "{}", m.steiner_points);
+    assert_eq!(mt.triangles, m.triangles);
+    assert_eq!(mt.segments, m.segments);
+    for (p, q) in mt.vertices.iter().zip(&m.vertices) {
+        assert_eq!(*p, [q[0] * s, q[1] * s]);
+    }
+    mt.validate().unwrap();
+}

@@ -8,42 +8,50 @@
 /// `x` within `box_half` of `origin` in every coordinate (which keeps the program bounded).
 /// `origin` must lie in the polyhedron up to rounding (every `d_i >= 0`; negative ones are
 /// taken as 0). `None` when the simplex runs out of its pivot budget or nothing is inside.
+///
+/// With `unit`, the program is solved with unit normals and lengths in units of `box_half`,
+/// which keeps every coefficient near 1, so that the pivot tolerances mean the same at any
+/// scale and position of the input; without it, with the raw normals and lengths (on a star
+/// 1e-9 across the plane rows are then about 1e-18, and the tolerances take them for zeros).
 pub fn chebyshev_center(
     origin: [f64; 3],
     planes: &[([f64; 3], f64)],
     box_half: f64,
+    unit: bool,
 ) -> Option<([f64; 3], f64)> {
-    // Variables z = (u+, u-, ρ) >= 0 with x - origin = box_half · (u+ - u-) and r = box_half · ρ;
-    // rows n̂·u + ρ <= d / (|n| box_half) and ±u_k <= 1. Unit normals and lengths in units of
-    // `box_half` keep every coefficient near 1, so the pivot tolerances mean the same at any
-    // scale and position of the input (with raw normals, a star 1e-9 across had plane rows of
-    // 1e-18 that the tolerance took for zeros).
     if !(box_half > 0.0 && box_half.is_finite()) {
         return None;
     }
+    // Variables z = (u+, u-, ρ) >= 0 with x - origin = l (u+ - u-) and r = l ρ, l the length
+    // unit; rows f n·u + f |n| ρ <= f d / l (f the row scale) and ±u_k <= box_half / l.
+    let l = if unit { box_half } else { 1.0 };
     let mut rows: Vec<([f64; 7], f64)> = Vec::with_capacity(planes.len() + 6);
     for &(n, d) in planes {
         let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-        let rhs = d.max(0.0) / len / box_half;
-        if len == 0.0 || !len.is_finite() || !rhs.is_finite() {
+        if len == 0.0 || !len.is_finite() || !d.is_finite() {
             continue;
         }
-        let u = n.map(|c| c / len);
-        rows.push(([u[0], u[1], u[2], -u[0], -u[1], -u[2], 1.0], rhs));
+        let f = if unit { 1.0 / len } else { 1.0 };
+        let u = n.map(|c| c * f);
+        let rhs = d.max(0.0) * f / l;
+        if !rhs.is_finite() {
+            continue;
+        }
+        rows.push(([u[0], u[1], u[2], -u[0], -u[1], -u[2], len * f], rhs));
     }
     for k in 0..3 {
         let mut a = [0.0; 7];
         a[k] = 1.0;
         a[k + 3] = -1.0;
-        rows.push((a, 1.0));
+        rows.push((a, box_half / l));
         let mut b = [0.0; 7];
         b[k] = -1.0;
         b[k + 3] = 1.0;
-        rows.push((b, 1.0));
+        rows.push((b, box_half / l));
     }
     let z = maximize(&[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0], &rows)?;
-    let x = [0, 1, 2].map(|k| origin[k] + box_half * (z[k] - z[k + 3]));
-    (z[6] > 0.0).then_some((x, box_half * z[6]))
+    let x = [0, 1, 2].map(|k| origin[k] + l * (z[k] - z[k + 3]));
+    (z[6] > 0.0).then_some((x, l * z[6]))
 }
 
 /// Maximizes `c · z` subject to `a_i · z <= b_i` (every `b_i >= 0`, so `z = 0` is feasible)
@@ -131,7 +139,7 @@ mod tests {
             ([0.0, 0.0, -2.0], 0.0), // normals need not be unit vectors
             ([0.0, 0.0, 1.0], 1.0),
         ];
-        let (x, r) = chebyshev_center([0.0; 3], &planes, 10.0).unwrap();
+        let (x, r) = chebyshev_center([0.0; 3], &planes, 10.0, false).unwrap();
         for k in 0..3 {
             assert!((x[k] - 0.5).abs() < 1e-9, "{x:?}");
         }
@@ -156,7 +164,7 @@ mod tests {
                 ([0.0, 0.0, -2.0 * s], 0.0),
                 ([0.0, 0.0, s], s * s),
             ];
-            let (x, r) = chebyshev_center(o, &planes, 10.0 * s).unwrap();
+            let (x, r) = chebyshev_center(o, &planes, 10.0 * s, true).unwrap();
             for k in 0..3 {
                 assert!((x[k] - o[k] - 0.5 * s).abs() < 1e-6 * s, "{s} {x:?}");
             }
@@ -175,7 +183,7 @@ mod tests {
             ([0.0, 1.0, 0.0], 1.0),
             ([0.0, -1.0, 0.0], 1.0),
         ];
-        let (x, r) = chebyshev_center([0.0; 3], &planes, 10.0).unwrap();
+        let (x, r) = chebyshev_center([0.0; 3], &planes, 10.0, false).unwrap();
         assert!(r > 0.0 && r < 0.01);
         assert!(x[2] > 0.0 && x[2] < 0.01 * x[0], "{x:?}");
     }
@@ -184,6 +192,6 @@ mod tests {
     fn empty_interior_gives_none() {
         // z >= 0 and z <= 0: a plane, no ball fits.
         let planes = [([0.0, 0.0, -1.0], 0.0), ([0.0, 0.0, 1.0], 0.0)];
-        assert!(chebyshev_center([0.0; 3], &planes, 1.0).is_none());
+        assert!(chebyshev_center([0.0; 3], &planes, 1.0, true).is_none());
     }
 }

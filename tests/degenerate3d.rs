@@ -199,6 +199,36 @@ fn box_at_tiny_scale() {
     );
 }
 
+/// Below 2^-128 the exact insphere test underflows (3D campaign seed 3, run 6475: a cube of
+/// 1e-54 came back with a vertex "inside" a tet's circumsphere); such inputs are meshed scaled
+/// up by a power of two, and give the same mesh as the box at scale 1, scaled.
+#[test]
+fn box_at_underflow_scale() {
+    // (The test harness's own exact checks underflow there too: `validate` is the check.) At
+    // 2^-180 the run is exactly the run on the box 2^179 times larger, scaled back.
+    let s = 2f64.powi(-180);
+    let plc = box_plc([0.0; 3], [3.0 * s, 2.0 * s, s]);
+    let big = box_plc([0.0; 3], [1.5, 1.0, 0.5]);
+    let v = 1.5 * 0.5 / 500.0;
+    for (opts, small) in [
+        (plain(), plain()),
+        (quality(1.414), quality(1.414)),
+        (
+            quality_volume(1.414, v),
+            quality_volume(1.414, v * s * s * s * 8.0),
+        ),
+    ] {
+        let a = idmesh::tetrahedralize(&plc, &small).unwrap();
+        let b = idmesh::tetrahedralize(&big, &opts).unwrap();
+        a.validate().unwrap();
+        assert_eq!(a.tets.len(), b.tets.len());
+        assert!(a.tets == b.tets);
+        for (p, q) in a.vertices.iter().zip(&b.vertices) {
+            assert_eq!(p.map(|x| x * 2f64.powi(179)), *q);
+        }
+    }
+}
+
 #[test]
 fn box_at_tiny_scale_far_from_origin() {
     let (o, s) = (1.0, 1e-6);

@@ -4,9 +4,9 @@
 
 use super::refine::{segment_marker, Piece, Refiner, SegmentSteiner};
 use super::store::{Cdt, Inserted, Mode, Seg, Start, EXTERIOR, HOLE, NO_REGION};
-use super::validate::tiny_scale;
 use super::{Options, TriMesh, NONE};
 use crate::error::{Error, InputError};
+use crate::geometry::tiny_scale;
 use crate::input2d::Pslg;
 use crate::predicates::{orient2d, strictly_between};
 use crate::progress::{stage, tick, Stage};
@@ -56,19 +56,7 @@ fn run_scaled(pslg: &Pslg, opts: &Options, s: f64) -> Result<TriMesh, Error> {
         }));
     }
     let mut m = mesh(&g, &o)?;
-    let n = pslg.points.len();
-    m.vertices[..n].copy_from_slice(&pslg.points);
-    for p in &mut m.vertices[n..] {
-        for x in p.iter_mut() {
-            let y = *x / s;
-            if y * s != *x {
-                return Err(Error::Internal(format!(
-                    "Steiner point coordinate {y:e} is too small to represent exactly"
-                )));
-            }
-            *x = y;
-        }
-    }
+    crate::geometry::scale_back(&mut m.vertices, &pslg.points, s)?;
     Ok(m)
 }
 

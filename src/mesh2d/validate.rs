@@ -21,24 +21,10 @@ fn tick_pass(m: &TriMesh, pass: usize, t: usize) -> Result<(), String> {
 /// The passes over the triangles a full check makes (for the progress estimate).
 const PASSES: usize = 5;
 
-/// The power of two that brings points whose coordinates all lie below `2^-128` in magnitude
-/// up to `[1, 4)` (at most `2^500`), or `None` for any other points. Below that the exact
-/// predicates are not exact any more: the in-circle test is of degree four in coordinate
-/// differences, which can be as small as an ulp of the coordinates, and the smallest terms
-/// of its expansions underflow (2D campaign seed 8, run 5389: a square of 1e-67 with four
-/// cocircular corners found "inside" each other's circles). Scaling by a power of two is
-/// exact and changes no sign.
-pub(super) fn tiny_scale<'a>(points: impl Iterator<Item = &'a [f64; 2]>) -> Option<f64> {
-    let max = points.fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
-    if !(max > 0.0 && max < 2f64.powi(-128)) {
-        return None;
-    }
-    Some(2f64.powi((-max.log2().floor() as i32).min(500)))
-}
-
-/// `m` with its vertices scaled up by [`tiny_scale`], when they are that small.
+/// `m` with its vertices scaled up by [`crate::geometry::tiny_scale`], when they are that
+/// small.
 fn scaled_up(m: &TriMesh) -> Option<TriMesh> {
-    let s = tiny_scale(m.vertices.iter())?;
+    let s = crate::geometry::tiny_scale(m.vertices.iter())?;
     let mut c = m.clone();
     for p in &mut c.vertices {
         *p = [p[0] * s, p[1] * s];

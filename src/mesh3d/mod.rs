@@ -185,6 +185,12 @@ impl fmt::Debug for Options3 {
 /// [`Options3::progress`] set, the run reports to it and returns [`Error::Cancelled`] when told
 /// to stop.
 pub fn tetrahedralize(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
+    let seeds = plc.holes.iter().chain(plc.regions.iter().map(|r| &r.point));
+    let facet_holes = plc.facets.iter().flat_map(|f| f.holes.iter());
+    if let Some(s) = crate::geometry::tiny_scale(plc.points.iter().chain(seeds).chain(facet_holes))
+    {
+        return tetrahedralize_scaled(plc, opts, s);
+    }
     catch_panic("", || {
         if opts.surface_input {
             let r = repair_surface(plc)?;
@@ -255,6 +261,48 @@ pub fn tetrahedralize(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
             Ok(mesh)
         })
     })
+}
+
+/// Meshes an input whose coordinates all lie below `2^-128` (see
+/// [`crate::geometry::tiny_scale`]) scaled up by the power of two `s`, and scales the mesh
+/// back: exactly, so input points come back as they were and every sign is the same as on
+/// the scaled-up input (the exact insphere test underflows on such coordinates: a cube of
+/// 1e-54 was returned with a vertex "inside" a tet's circumsphere). Sizes given with the
+/// input (volumes, areas, lengths, the sizing callback) are scaled with it.
+fn tetrahedralize_scaled(plc: &Plc, opts: &Options3, s: f64) -> Result<TetMesh, Error> {
+    let up = |p: &mut [f64; 3]| *p = p.map(|x| x * s);
+    let mut g = plc.clone();
+    g.points.iter_mut().for_each(up);
+    g.holes.iter_mut().for_each(up);
+    for f in &mut g.facets {
+        f.holes.iter_mut().for_each(up);
+    }
+    let s3 = s * s * s;
+    for r in &mut g.regions {
+        up(&mut r.point);
+        r.max_volume = r.max_volume.map(|v| v * s3);
+    }
+    let mut o = opts.clone();
+    o.max_volume = opts.max_volume.map(|v| v * s3);
+    o.facet_max_area = opts
+        .facet_max_area
+        .iter()
+        .map(|&(m, a)| (m, a * s * s))
+        .collect();
+    o.segment_max_length = opts
+        .segment_max_length
+        .iter()
+        .map(|&(e, l)| (e, l * s))
+        .collect();
+    if let Some(f) = opts.sizing.clone() {
+        let down = move |p: [f64; 3]| p.map(|x| x / s);
+        o.sizing = Some(Arc::new(move |a, b, c, d, vol| {
+            f(down(a), down(b), down(c), down(d), vol / s3)
+        }));
+    }
+    let mut m = tetrahedralize(&g, &o)?;
+    crate::geometry::scale_back(&mut m.vertices, &plc.points, s)?;
+    Ok(m)
 }
 
 /// Delaunay tetrahedralization of a point set (TetGen without `-p`): the tetrahedra fill the

@@ -127,6 +127,13 @@ impl TetMesh {
     /// subface; for an optimised mesh ([`TetMesh::optimized`]), every subsegment an edge of the
     /// mesh instead of the empty circumspheres.
     pub fn validate(&self) -> Result<(), Error> {
+        // Coordinates below 2^-128 are checked scaled up by a power of two (exact), as they
+        // are meshed: the exact insphere test underflows on them.
+        if let Some(s) = crate::geometry::tiny_scale(self.vertices.iter()) {
+            let mut m = self.clone();
+            m.vertices.iter_mut().for_each(|p| *p = p.map(|x| x * s));
+            return super::validate::validate_mesh(&m);
+        }
         super::validate::validate_mesh(self)
     }
 }

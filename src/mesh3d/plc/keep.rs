@@ -454,8 +454,12 @@ impl Mesher<'_> {
                 (n.to_array(), n.dot(a))
             })
             .collect();
-        if let Some((c, _)) = crate::lp::chebyshev_center(ps, &planes, reach) {
-            consider(c);
+        // Whether the kernel's deepest point or a point on the way to it is valid.
+        let deepest = |unit: bool, consider: &mut dyn FnMut([f64; 3]) -> bool| -> bool {
+            let Some((c, _)) = crate::lp::chebyshev_center(ps, &planes, reach, unit) else {
+                return false;
+            };
+            let centre = consider(c);
             let mut found = 0;
             let mut t = 0.5;
             for _ in 0..60 {
@@ -468,12 +472,19 @@ impl Mesher<'_> {
                 }
                 t *= 0.5;
             }
-        }
+            centre || found > 0
+        };
+        let mut valid = deepest(false, &mut consider);
         let mut others: Vec<u32> = link.iter().flatten().copied().filter(|&v| v != s).collect();
         others.sort_unstable();
         others.dedup();
         let n = others.len().max(1) as f64;
-        consider([0, 1, 2].map(|k| others.iter().map(|&v| p(v)[k]).sum::<f64>() / n));
+        valid |= consider([0, 1, 2].map(|k| others.iter().map(|&v| p(v)[k]).sum::<f64>() / n));
+        if !valid {
+            // The raw program's tolerances are absolute: on a star far below unit size they
+            // take its planes for zeros. Then the deepest point in units of the star.
+            deepest(true, &mut consider);
+        }
         best.map(|b| b.0)
     }
 

@@ -3,16 +3,20 @@
 //! location of a point in a triangle or tetrahedron mesh for interpolation, from the
 //! predicates' signs ([`locate_in_simplices`]).
 
-/// The power of two that brings points whose coordinates all lie below `2^-128` in magnitude
-/// up to `[1, 4)` (at most `2^500`), or `None` for any other points. Below that the exact
-/// predicates are not exact any more: the in-circle test is of degree four in coordinate
-/// differences, which can be as small as an ulp of the coordinates, and the smallest terms
-/// of its expansions underflow (2D campaign seed 8, run 5389: a square of 1e-67 with four
-/// cocircular corners found "inside" each other's circles; in 3D the insphere test, of degree
-/// five, on a cube of 1e-54). Scaling by a power of two is exact and changes no sign.
+/// The power of two that brings points whose coordinates all lie below `2^-64` in magnitude
+/// up to `[1, 4)` (at most `2^500`), or `None` for any other points. Far enough below that
+/// the exact predicates are not exact any more: the in-circle test is of degree four in
+/// coordinate differences, which can be as small as an ulp of the coordinates, and the
+/// smallest terms of its expansions underflow (2D campaign seed 8, run 5389: a square of
+/// 1e-67 with four cocircular corners found "inside" each other's circles; in 3D the insphere
+/// test, of degree five, on a cube of 1e-54, and a cube of 2^-120 with a facet 10^-6 of its
+/// size, which meshed slowly and differently from its copy scaled by 2^120). The products of
+/// five differences of an ulp, with the rounding errors of the expansions, reach `2^-1074` for
+/// coordinates near `2^-119`; `2^-64` leaves a wide margin. Scaling by a power of two is exact
+/// and changes no sign.
 pub fn tiny_scale<'a, const N: usize>(points: impl Iterator<Item = &'a [f64; N]>) -> Option<f64> {
     let max = points.fold(0.0f64, |m, p| p.iter().fold(m, |m, x| m.max(x.abs())));
-    if !(max > 0.0 && max < 2f64.powi(-128)) {
+    if !(max > 0.0 && max < 2f64.powi(-64)) {
         return None;
     }
     Some(2f64.powi((-max.log2().floor() as i32).min(500)))

@@ -443,18 +443,26 @@ pub fn dominant_axis(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> usize {
 /// Why it works: every sphere through `a, b, c` cuts their plane in their circumcircle, so
 /// for coplanar `p` inside-the-sphere is inside-the-circle. The sphere used passes through a
 /// fourth point `q`: `a` moved along the [`dominant_axis`] `k` (whose normal component is
-/// exactly non-zero, so `q` is off the plane) by `max(1, |a_k|)` towards and past zero — a
-/// step large enough that the rounded `q_k` really differs from `a_k`, and one that cannot
-/// overflow. `insphere` is then sign-corrected by `orient3d(a, b, c, q)`.
+/// exactly non-zero, so `q` is off the plane) towards zero by the triangle's extent (its
+/// largest coordinate difference), or by `2ε|a_k|` if that is larger, so that the rounded
+/// `q_k` really differs from `a_k`. `insphere` is then sign-corrected by
+/// `orient3d(a, b, c, q)`.
 ///
 /// Precondition: `p` exactly coplanar with `a, b, c` (e.g. a vertex of the facet). If it is
 /// not, the answer is still an exact, consistent decision, but against that sphere through
 /// `a, b, c, q`; since `q` is a deterministic function of `a, b, c` alone, the same triangle
-/// always gets the same sphere, whatever `p` is asked about.
+/// always gets the same sphere, whatever `p` is asked about. That sphere is about the size of
+/// the triangle, so points rounded off a slanted facet's plane are judged nearly as their
+/// projections are, and the same at every scale (issue 14: a step of at least 1 made a sphere
+/// 10^20 times the triangle's size on an input scaled by 2^-20, where a rounding error off the
+/// plane outweighed the in-plane distances and the facet meshes cascaded).
 pub fn incircle3d(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3]) -> f64 {
     let k = dominant_axis(a, b, c);
     let mut q = a;
-    let step = a[k].abs().max(1.0);
+    let span = (0..3)
+        .map(|i| (b[i] - a[i]).abs().max((c[i] - a[i]).abs()))
+        .fold(0.0, f64::max);
+    let step = span.max(2.0 * f64::EPSILON * a[k].abs());
     q[k] = if a[k] >= 0.0 {
         a[k] - step
     } else {

@@ -199,7 +199,7 @@ fn box_at_tiny_scale() {
     );
 }
 
-/// Below 2^-128 the exact insphere test underflows (3D campaign seed 3, run 6475: a cube of
+/// Far below 2^-64 the exact insphere test underflows (3D campaign seed 3, run 6475: a cube of
 /// 1e-54 came back with a vertex "inside" a tet's circumsphere); such inputs are meshed scaled
 /// up by a power of two, and give the same mesh as the box at scale 1, scaled.
 #[test]

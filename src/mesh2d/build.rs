@@ -31,7 +31,7 @@ pub(super) fn run(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
     }
 }
 
-/// Meshes an input whose coordinates are all below `2^-128` (see [`tiny_scale`]) scaled up
+/// Meshes an input whose coordinates are all below `2^-64` (see [`tiny_scale`]) scaled up
 /// by the power of two `s`: every decision is then the one the exact predicates would make
 /// without underflow (a scaling by a power of two changes no sign and no rounding of the
 /// constructions), and the mesh is scaled back. Input points are given back as they were;

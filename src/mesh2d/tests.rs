@@ -480,7 +480,7 @@ fn constrained_insertion_of_a_long_segment() {
     assert!(c.steiner_points > 0);
 }
 
-/// Coordinates below 2^-128 are meshed scaled up by a power of two (`geometry::tiny_scale`):
+/// Coordinates below 2^-64 are meshed scaled up by a power of two (`geometry::tiny_scale`):
 /// the square with a hole at 2^-300 of its size, with a region's area bound, a global one and
 /// a sizing test, gets exactly the mesh of the unscaled square scaled down, and it validates
 /// (the in-circle test underflows on the raw coordinates).

@@ -263,7 +263,7 @@ pub fn tetrahedralize(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
     })
 }
 
-/// Meshes an input whose coordinates all lie below `2^-128` (see
+/// Meshes an input whose coordinates all lie below `2^-64` (see
 /// [`crate::geometry::tiny_scale`]) scaled up by the power of two `s`, and scales the mesh
 /// back: exactly, so input points come back as they were and every sign is the same as on
 /// the scaled-up input (the exact insphere test underflows on such coordinates: a cube of

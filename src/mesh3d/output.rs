@@ -127,7 +127,7 @@ impl TetMesh {
     /// subface; for an optimised mesh ([`TetMesh::optimized`]), every subsegment an edge of the
     /// mesh instead of the empty circumspheres.
     pub fn validate(&self) -> Result<(), Error> {
-        // Coordinates below 2^-128 are checked scaled up by a power of two (exact), as they
+        // Coordinates below 2^-64 are checked scaled up by a power of two (exact), as they
         // are meshed: the exact insphere test underflows on them.
         if let Some(s) = crate::geometry::tiny_scale(self.vertices.iter()) {
             let mut m = self.clone();

@@ -31,9 +31,7 @@
 //! hull triangle, or exactly in the triangle's plane and strictly inside its circumcircle. Both
 //! are decided with exact predicates.
 
-use crate::predicates::{
-    insphere_fast, insphere_filter, insphere_near_degenerate, orient3d, orient3d_fast,
-};
+use crate::predicates::{insphere_filter, insphere_near_degenerate, orient3d, orient3d_fast};
 
 use super::NONE;
 
@@ -849,32 +847,7 @@ pub fn ghost_conflict(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3]) -> boo
 }
 
 /// For `p` exactly in the plane of the (non-degenerate) triangle `a, b, c`: whether `p` lies
-/// strictly inside the triangle's circumcircle. Exact.
-///
-/// Any sphere through `a, b, c` cuts their plane in their circumcircle, so the answer is the
-/// sign of `insphere(a, b, c, q, p)` for a point `q` off the plane, corrected by the sign of
-/// `orient3d(a, b, c, q)`. `q` is `a` moved along the coordinate axis of the largest normal
-/// component by `max(1, |a_k|)`, so that the rounded `q` really differs from `a`; the other
-/// axes are tried should that `q` still be (exactly) in the plane.
+/// strictly inside the triangle's circumcircle. Exact (see [`crate::predicates::incircle3d`]).
 pub fn in_circumcircle_coplanar(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3]) -> bool {
-    let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let w = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-    let nrm = [
-        (u[1] * w[2] - u[2] * w[1]).abs(),
-        (u[2] * w[0] - u[0] * w[2]).abs(),
-        (u[0] * w[1] - u[1] * w[0]).abs(),
-    ];
-    let mut axes = [0usize, 1, 2];
-    axes.sort_by(|&i, &j| nrm[j].total_cmp(&nrm[i]));
-    for k in axes {
-        let mut q = a;
-        q[k] = a[k] + a[k].abs().max(1.0);
-        let o = orient3d_fast(a, b, c, q);
-        if o != 0.0 {
-            let s = insphere_fast(a, b, c, q, p);
-            return if o > 0.0 { s > 0.0 } else { s < 0.0 };
-        }
-    }
-    // a, b, c are collinear: no circumcircle.
-    false
+    crate::predicates::incircle3d(a, b, c, p) > 0.0
 }

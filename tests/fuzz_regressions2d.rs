@@ -541,3 +541,60 @@ fn segments_sharing_an_edge_within_rounding_split_together() {
         }
     }
 }
+
+/// The star with a point near one of its reflex corners (2e-9 of its size from it at scale
+/// 1, seed 11 run 2045; 2e-12 with `-q23`, seed 12 run 6664; 1.3e-6 and translated by 1e7,
+/// seed 9 run 7078): the corner's segments split down towards the point, their split points
+/// rounded outward make a fan of slivers thinner than an ulp seen from one far split point
+/// of the same chain, and a piece whose only triangle is such a sliver could not be split
+/// ("splitting segment … LostWalk" or "… OnSegment"): no float point lies inside the sliver,
+/// and the Bowyer–Watson cavity seeded with it was not star-shaped from a point beyond it.
+/// Now the split point may go a few ulps into the domain, and the cavity takes the slivers
+/// between the edge and the point.
+#[test]
+fn split_beside_a_fan_of_chain_slivers_is_made() {
+    let cases = [
+        case(
+            41,
+            vec![NearDuplicate {
+                point: 34333,
+                e: 173,
+                dir: [29, 67, -27],
+            }],
+            None,
+        ),
+        case(
+            203,
+            vec![NearDuplicate {
+                point: 19147,
+                e: 44,
+                dir: [-79, -48, 89],
+            }],
+            Some(138),
+        ),
+        case(
+            101,
+            vec![
+                NearDuplicate {
+                    point: 26765,
+                    e: 50,
+                    dir: [-78, 67, 50],
+                },
+                Translate {
+                    e: 191,
+                    dir: [101, 124, 56],
+                },
+                Perturb {
+                    point: 25072,
+                    e: 216,
+                    dir: [23, -121, 53],
+                },
+            ],
+            None,
+        ),
+    ];
+    for (k, c) in cases.iter().enumerate() {
+        let m = mesh(c).unwrap_or_else(|e| panic!("case {k}: {e}"));
+        assert!(m.complete, "case {k}");
+    }
+}

@@ -636,6 +636,45 @@ impl<'a> Refiner<'a> {
                 return Some(r);
             }
         }
+        // The edge's triangles can be slivers of this segment's own chain, thinner than an
+        // ulp: its split points rounded outward, a fan of them seen from one far chain vertex
+        // (2D campaign, issue 14: a point 2e-9 from a star's reflex corner; seed 11 run 2045).
+        // No float point lies inside them; the split point goes a few ulps into the domain
+        // instead, where its cavity takes the whole fan and every new triangle is
+        // counter-clockwise (the segment bends inward by that much, as by rounding).
+        let (pa, pb) = (
+            self.cdt.pts[self.cdt.segs[s as usize].a as usize],
+            self.cdt.pts[self.cdt.segs[s as usize].b as usize],
+        );
+        for e in [h, self.cdt.twin(h)] {
+            if e == NONE || self.cdt.apex(e) == self.cdt.ghost {
+                continue;
+            }
+            let (u, w) = self.cdt.edge_ends(e);
+            let (pu, pw) = (self.cdt.pts[u as usize], self.cdt.pts[w as usize]);
+            // The triangle of `e` lies to its left: step along the left normal's signs.
+            let sgn = |x: f64| (x > 0.0) as i64 - (x < 0.0) as i64;
+            let sign = [-sgn(pw[1] - pu[1]), sgn(pw[0] - pu[0])];
+            for steps in [1i64, 2, 4, 8, 16, 32, 64] {
+                for axes in [[true, false], [false, true], [true, true]] {
+                    let mut q = m;
+                    for k in 0..2 {
+                        if axes[k] {
+                            q[k] = ulp_step(m[k], steps * sign[k]);
+                        }
+                    }
+                    if q == m || orient2d(pu, pw, q) <= 0.0 || !encroaches(pa, pb, q) {
+                        continue;
+                    }
+                    let r = self
+                        .cdt
+                        .insert(q, Start::SplitEdge(h), Mode::Force, input, None);
+                    if fine(r) {
+                        return Some(r);
+                    }
+                }
+            }
+        }
         None
     }
 

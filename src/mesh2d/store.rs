@@ -963,92 +963,117 @@ impl<G: Geometry> Cdt<G> {
         // encroaches a splittable segment reports that one, so it gets split.
         let mut fixed_hit = NONE;
         let mut k = 0;
-        while k < self.cavity.len() {
-            let t = self.cavity[k];
-            k += 1;
-            for i in 0..3 {
-                let h = 3 * t + i as u32;
-                if h == split_half || h == split_twin {
-                    // The edge being split is inside the cavity (or, on a carved boundary,
-                    // has no outside): the fan closes over it.
-                    continue;
-                }
-                let tw = self.tn[t as usize][i];
-                let n = tw / 3;
-                let st = if tw == NONE {
-                    0
-                } else {
-                    self.stamp[n as usize]
-                };
-                if st == inside {
-                    continue;
-                }
-                let s = self.ts[t as usize][i];
-                if s != NONE || tw == NONE {
-                    let (a, b) = self.edge_ends(h);
-                    if s != NONE && self.geom.encroaches(self.p(a), self.p(b), p) {
-                        match mode {
-                            Mode::Provisional if self.segs[s as usize].fixed => fixed_hit = s,
-                            Mode::Provisional => return Inserted::Encroached(s),
-                            Mode::Force => self.queue_split(s),
-                        }
+        let mut taken = 0u32;
+        'grow: loop {
+            while k < self.cavity.len() {
+                let t = self.cavity[k];
+                k += 1;
+                for i in 0..3 {
+                    let h = 3 * t + i as u32;
+                    if h == split_half || h == split_twin {
+                        // The edge being split is inside the cavity (or, on a carved boundary,
+                        // has no outside): the fan closes over it.
+                        continue;
                     }
-                    self.boundary.push(h);
-                    continue;
+                    let tw = self.tn[t as usize][i];
+                    let n = tw / 3;
+                    let st = if tw == NONE {
+                        0
+                    } else {
+                        self.stamp[n as usize]
+                    };
+                    if st == inside {
+                        continue;
+                    }
+                    let s = self.ts[t as usize][i];
+                    if s != NONE || tw == NONE {
+                        let (a, b) = self.edge_ends(h);
+                        if s != NONE && self.geom.encroaches(self.p(a), self.p(b), p) {
+                            match mode {
+                                Mode::Provisional if self.segs[s as usize].fixed => fixed_hit = s,
+                                Mode::Provisional => return Inserted::Encroached(s),
+                                Mode::Force => self.queue_split(s),
+                            }
+                        }
+                        self.boundary.push(h);
+                        continue;
+                    }
+                    // Visibility: cross an edge only when `p` sees it from the cavity side (or lies
+                    // on its line). Without walls this loses no cavity triangle (the cavity is
+                    // star-shaped from `p`); with walls it stops the cavity from wrapping around a
+                    // vertex into triangles hidden behind a segment.
+                    // (While the input points go in there are no segments and nothing to hide.)
+                    let visible = self.segs.is_empty() || {
+                        let (a, b) = self.edge_ends(h);
+                        a == self.ghost
+                            || b == self.ghost
+                            || self.geom.orient(self.p(a), self.p(b), p) >= 0.0
+                    };
+                    if st != outside && visible && self.conflict(n, p) {
+                        self.stamp[n as usize] = inside;
+                        self.cavity.push(n);
+                    } else {
+                        if !visible && st != outside && self.conflict(n, p) {
+                            self.unsettled = true;
+                        }
+                        self.stamp[n as usize] = outside;
+                        self.boundary.push(h);
+                    }
                 }
-                // Visibility: cross an edge only when `p` sees it from the cavity side (or lies
-                // on its line). Without walls this loses no cavity triangle (the cavity is
-                // star-shaped from `p`); with walls it stops the cavity from wrapping around a
-                // vertex into triangles hidden behind a segment.
-                // (While the input points go in there are no segments and nothing to hide.)
-                let visible = self.segs.is_empty() || {
-                    let (a, b) = self.edge_ends(h);
-                    a == self.ghost
-                        || b == self.ghost
-                        || self.geom.orient(self.p(a), self.p(b), p) >= 0.0
-                };
-                if st != outside && visible && self.conflict(n, p) {
+            }
+            if fixed_hit != NONE {
+                return Inserted::Encroached(fixed_hit);
+            }
+            // Every new finite triangle must be counter-clockwise; a point exactly on a wall
+            // (not the segment being split) would make a flat one.
+            self.bflat.clear();
+            // A split point (seeded, not located) can round onto an existing vertex.
+            for j in 0..self.boundary.len() {
+                let (q, r) = self.edge_ends(self.boundary[j]);
+                for v in [q, r] {
+                    if v != self.ghost && self.p(v) == p {
+                        return Inserted::Duplicate(v);
+                    }
+                }
+            }
+            for j in 0..self.boundary.len() {
+                let h = self.boundary[j];
+                let (q, r) = self.edge_ends(h);
+                let flat = q != self.ghost
+                    && r != self.ghost
+                    && self.geom.orient(p, self.p(q), self.p(r)) <= 0.0;
+                let tolerated = flat && !self.carved && self.same_input_segment(on_input_seg, q, r);
+                self.bflat.push(tolerated);
+                if flat && !tolerated {
+                    let s = self.seg_at(h);
+                    if s != NONE {
+                        return Inserted::OnSegment(s);
+                    }
+                    // A split point seeds the edge's triangles whether or not they conflict
+                    // with it; past a fan of chain slivers thinner than an ulp (a boundary
+                    // segment's split points rounded outward, seen from one far vertex of
+                    // the chain) the cavity is then not star-shaped from it. Take the triangle behind
+                    // the edge it cannot see as well (the fan is not locally Delaunay there
+                    // for now: `unsettled`), and grow on (2D campaign, issue 14).
+                    let tw = self.twin(h);
+                    if split_twin != NONE || split_half == NONE || tw == NONE || taken >= 64 {
+                        return Inserted::LostWalk;
+                    }
+                    taken += 1;
+                    let n = tw / 3;
                     self.stamp[n as usize] = inside;
                     self.cavity.push(n);
-                } else {
-                    if !visible && st != outside && self.conflict(n, p) {
-                        self.unsettled = true;
-                    }
-                    self.stamp[n as usize] = outside;
-                    self.boundary.push(h);
+                    self.unsettled = true;
+                    let stamp = &self.stamp;
+                    let tn = &self.tn;
+                    self.boundary.retain(|&e| {
+                        let o = tn[(e / 3) as usize][(e % 3) as usize];
+                        o == NONE || stamp[(o / 3) as usize] != inside
+                    });
+                    continue 'grow;
                 }
             }
-        }
-        if fixed_hit != NONE {
-            return Inserted::Encroached(fixed_hit);
-        }
-        // Every new finite triangle must be counter-clockwise; a point exactly on a wall (not
-        // the segment being split) would make a flat one.
-        self.bflat.clear();
-        // A split point (seeded, not located) can round onto an existing vertex.
-        for j in 0..self.boundary.len() {
-            let (q, r) = self.edge_ends(self.boundary[j]);
-            for v in [q, r] {
-                if v != self.ghost && self.p(v) == p {
-                    return Inserted::Duplicate(v);
-                }
-            }
-        }
-        for j in 0..self.boundary.len() {
-            let h = self.boundary[j];
-            let (q, r) = self.edge_ends(h);
-            let flat = q != self.ghost
-                && r != self.ghost
-                && self.geom.orient(p, self.p(q), self.p(r)) <= 0.0;
-            let tolerated = flat && !self.carved && self.same_input_segment(on_input_seg, q, r);
-            self.bflat.push(tolerated);
-            if flat && !tolerated {
-                let s = self.seg_at(h);
-                if s != NONE {
-                    return Inserted::OnSegment(s);
-                }
-                return Inserted::LostWalk;
-            }
+            break;
         }
         if self.pts.len() >= (NONE - 8) as usize {
             return Inserted::LostWalk;

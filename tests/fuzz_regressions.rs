@@ -517,3 +517,93 @@ fn tiny_facet_mesh_is_the_same_at_every_power_of_two_scale() {
     }
     assert!(counts.iter().all(|&c| c == counts[0]), "{counts:?}");
 }
+
+/// Tiny facets within rounding of another tiny facet or of an input corner: two triangles of
+/// 1e-13 at a cube corner, 1e-27 apart (3D campaign seed 11 run 6722, seed 8 run 5813), and
+/// a facet of 1e-9 at 1e6 (a few ulps) one ulp from a corner of the cube's hole (seed 6 run
+/// 8023). A subsegment's split point rounded onto a vertex of the other feature ("internal
+/// error: segment split point in facet …: Duplicate"), or the features split each other
+/// until the work budget ("… not recovered within … Steiner points"). Both are input errors
+/// now, naming the point and the facet.
+#[test]
+fn features_within_rounding_of_a_tiny_facet_are_named() {
+    let cases = [
+        (
+            mutate::Case3 {
+                seed: 4,
+                muts: vec![
+                    NearDuplicate {
+                        point: 34225,
+                        e: 59,
+                        dir: [-7, 92, -27],
+                    },
+                    Tiny {
+                        point: 55120,
+                        e: 167,
+                    },
+                    Tiny {
+                        point: 3966,
+                        e: 215,
+                    },
+                ],
+                ratio: Some(119),
+                keep_surface: false,
+            },
+            21,
+        ),
+        (
+            mutate::Case3 {
+                seed: 190,
+                muts: vec![
+                    Translate {
+                        e: 207,
+                        dir: [26, 120, -94],
+                    },
+                    Scale { e: 152 },
+                    Tiny {
+                        point: 42457,
+                        e: 115,
+                    },
+                    Tiny {
+                        point: 17702,
+                        e: 159,
+                    },
+                ],
+                ratio: Some(53),
+                keep_surface: false,
+            },
+            9,
+        ),
+        (
+            mutate::Case3 {
+                seed: 118,
+                muts: vec![
+                    Tiny {
+                        point: 63443,
+                        e: 155,
+                    },
+                    Tiny {
+                        point: 6178,
+                        e: 191,
+                    },
+                ],
+                ratio: None,
+                keep_surface: false,
+            },
+            19,
+        ),
+    ];
+    for (k, (case, want)) in cases.into_iter().enumerate() {
+        match within(20, move || case.run()) {
+            Err(idmesh::Error::Input(idmesh::InputError::PointTooCloseToFacet {
+                point,
+                facet,
+                distance,
+            })) => {
+                assert_eq!((point, facet), (want, 12), "case {k}");
+                assert!(distance < 1e-20, "case {k}: {distance}");
+            }
+            r => panic!("case {k}: {:?}", r.map(|m| m.tets.len())),
+        }
+    }
+}

@@ -586,11 +586,7 @@ impl Mesher<'_> {
             // are fine (two facets 1e-10 apart: a million entries for 10k points).
             let work_cap = self.hard_cap.saturating_add(self.num_input as u64);
             if self.steiner / 2 > self.hard_cap || (!self.classified && it / 16 > work_cap) {
-                return Err(Error::Internal(format!(
-                    "the input's edges and facets were not recovered within {} Steiner points \
-                     (work budget)",
-                    self.steiner
-                )));
+                return Err(self.budget_error());
             }
             if self.opts.verbose && it % (1 << 12) == (1 << 12) - 1 {
                 let c = &self.counts;
@@ -638,6 +634,49 @@ impl Mesher<'_> {
             }
         }
         Err(Error::Internal("work loop budget exhausted".into()))
+    }
+
+    /// The error when recovering the features runs out of budget: where a facet with work
+    /// on the queue has an input point too close to it to be meshed apart (3D campaign seed
+    /// 8 run 5813: two tiny facets 1e-27 apart split each other until the budget), that
+    /// input error ([`Mesher::too_close_at`], tried on the first 64 such facets); else an
+    /// internal error.
+    fn budget_error(&self) -> Error {
+        let internal = format!(
+            "the input's edges and facets were not recovered within {} Steiner points (work \
+             budget)",
+            self.steiner
+        );
+        let p = |v: u32| self.pts[v as usize];
+        let faces = self.face_q.iter().map(|&(v, fid, _)| {
+            let at = [0, 1, 2].map(|k| (p(v[0])[k] + p(v[1])[k] + p(v[2])[k]) / 3.0);
+            (at, fid)
+        });
+        let segs = self.seg_q.iter().filter_map(|&([a, b], _)| {
+            let e = self.feat.subseg(a, b)?;
+            let fid = *self.feat.edges[e as usize].facets.first()?;
+            Some(([0, 1, 2].map(|k| 0.5 * (p(a)[k] + p(b)[k])), fid))
+        });
+        let mut tried = std::collections::HashSet::new();
+        for (at, fid) in segs.chain(faces) {
+            if tried.len() >= 64 {
+                break;
+            }
+            if !tried.insert(fid) {
+                continue;
+            }
+            // Only a point next to the work as well as to the plane: a coplanar neighbour's
+            // vertex far from it is not what keeps the queue busy.
+            if let e @ Error::Input(crate::error::InputError::PointTooCloseToFacet {
+                point, ..
+            }) = self.too_close_at(at, fid, String::new())
+            {
+                if crate::geometry::dist2_3(p(point as u32), at) < self.floor2 * 65536.0 {
+                    return e;
+                }
+            }
+        }
+        Error::Internal(internal)
     }
 
     /// Whether subsegment `ab` is missing from the 3D mesh or a facet mesh, or encroached.
@@ -718,7 +757,15 @@ impl Mesher<'_> {
                     ),
                         _ => String::new(),
                     };
-                    Error::Internal(format!("segment split point in facet {f}: {err:?}{info}"))
+                    let internal = format!("segment split point in facet {f}: {err:?}{info}");
+                    // The split point rounds onto a vertex of the facet mesh: two features
+                    // of the facet run closer than floating point separates there (3D
+                    // campaign seed 11 run 6722: two tiny facets 1e-27 apart). An input
+                    // point that close to the facet is named; else the internal error.
+                    match err {
+                        FacetInsertError::Duplicate(_) => self.too_close_at(mid, f, internal),
+                        _ => Error::Internal(internal),
+                    }
                 })?;
         }
         self.insert3d(m, false)
@@ -914,6 +961,16 @@ impl Mesher<'_> {
     fn too_close(&self, v: [u32; 3], fid: u32, what: &str) -> Error {
         let c = v.map(|x| self.pts[x as usize]);
         let centroid = [0, 1, 2].map(|k| (c[0][k] + c[1][k] + c[2][k]) / 3.0);
+        self.too_close_at(
+            centroid,
+            fid,
+            format!("subface {v:?} of facet {fid} {what}"),
+        )
+    }
+
+    /// [`Mesher::too_close`] at point `centroid` of facet `fid`, with `internal` the message
+    /// of the internal error.
+    fn too_close_at(&self, centroid: [f64; 3], fid: u32, internal: String) -> Error {
         let info = &self.feat.facets[fid as usize];
         let nearest = (0..self.plc.points.len() as u32)
             .filter(|x| !info.vertices.contains(x))
@@ -922,7 +979,7 @@ impl Mesher<'_> {
                 d(x).total_cmp(&d(y))
             });
         let Some(point) = nearest else {
-            return Error::Internal(format!("subface {v:?} of facet {fid} {what}"));
+            return Error::Internal(internal);
         };
         let [a, b, cc] = info
             .plane
@@ -932,7 +989,7 @@ impl Mesher<'_> {
             .dot(n)
             .abs();
         if distance.is_nan() || distance * distance >= self.floor2 * 65536.0 {
-            return Error::Internal(format!("subface {v:?} of facet {fid} {what}"));
+            return Error::Internal(internal);
         }
         Error::Input(crate::error::InputError::PointTooCloseToFacet {
             point: point as usize,

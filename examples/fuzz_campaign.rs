@@ -13,6 +13,11 @@
 //!
 //! `RUNS` may also be a range `FIRST..END` (such as `1660..1661`): the cases before `FIRST`
 //! are drawn but not run, so one case of a campaign can be rerun alone.
+//!
+//! With `IDMESH_CAMPAIGN_DUMP=DIR`, every mesh returned as a success is also written to `DIR`
+//! in Triangle's or TetGen's formats (`r<run>.poly` input, `.node`, `.ele`, and `.face` in 3D,
+//! plus `.args`: the checker's options), so that an independent checker can read it:
+//! `fuzz/verify_campaign.sh DIR` runs `verify2d.py`/`verify3d.py` over them.
 
 #[path = "../fuzz/fuzz_targets/mutate.rs"]
 mod mutate;
@@ -20,6 +25,9 @@ mod mutate;
 use arbitrary::{Arbitrary, Unstructured};
 use mutate::{Case2, Case3};
 use std::collections::BTreeMap;
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::PathBuf;
 use std::sync::mpsc;
 use std::time::Duration;
 
@@ -77,6 +85,29 @@ fn outcome<M>(
     }
 }
 
+/// One writer of a dumped case: the file's extension and what goes into it.
+type Writer<'a> = (&'a str, &'a dyn Fn(&mut dyn Write) -> std::io::Result<()>);
+
+/// Writes `base.<ext>` for each writer. A case whose input cannot be written in the format
+/// (a PLC with free segments) is left out whole, as the checker could not read it.
+fn write_files(base: &std::path::Path, writers: &[Writer]) {
+    let mut done = Vec::new();
+    for (ext, f) in writers {
+        let path = base.with_extension(ext);
+        let ok = File::create(&path).is_ok_and(|file| {
+            let mut w = BufWriter::new(file);
+            f(&mut w).is_ok() && w.flush().is_ok()
+        });
+        done.push(path);
+        if !ok {
+            for p in &done {
+                let _ = std::fs::remove_file(p);
+            }
+            return;
+        }
+    }
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     if args.len() < 4 {
@@ -92,6 +123,10 @@ fn main() {
     let limit = Duration::from_secs(args.get(4).map_or(20, |s| s.parse().expect("TIME-LIMIT-S")));
     // IDMESH_CAMPAIGN_ALL=1 lists every run, to compare two builds run by run.
     let all = std::env::var_os("IDMESH_CAMPAIGN_ALL").is_some();
+    let dump = std::env::var_os("IDMESH_CAMPAIGN_DUMP").map(PathBuf::from);
+    if let Some(d) = &dump {
+        std::fs::create_dir_all(d).expect("IDMESH_CAMPAIGN_DUMP: cannot create the directory");
+    }
     let mut rng = Rng(seed);
     let mut counts: BTreeMap<String, u64> = BTreeMap::new();
     let mut bytes = vec![0u8; 256];
@@ -111,6 +146,7 @@ fn main() {
             };
             case.muts.truncate(6);
             desc = format!("{case:?}");
+            let dump = dump.clone();
             std::thread::spawn(move || {
                 let check = |m: &idmesh::TriMesh| {
                     if case.no_boundary_steiner {
@@ -119,7 +155,26 @@ fn main() {
                         m.validate().map_err(|e| e.to_string())
                     }
                 };
-                let _ = tx.send(outcome(case.run(), check, |m| m.complete));
+                let r = case.run();
+                if let (Some(d), Ok(m)) = (&dump, &r) {
+                    use idmesh::io::triangle as t;
+                    let base = d.join(format!("r{run}"));
+                    let args = if case.no_boundary_steiner {
+                        ""
+                    } else {
+                        "--require-delaunay"
+                    };
+                    write_files(
+                        &base,
+                        &[
+                            ("poly", &|w| t::write_pslg_poly(w, &case.input(), 1)),
+                            ("node", &|w| t::write_node(w, m, 1)),
+                            ("ele", &|w| t::write_ele(w, m, 1)),
+                            ("args", &|w: &mut dyn Write| writeln!(w, "{args}")),
+                        ],
+                    );
+                }
+                let _ = tx.send(outcome(r, check, |m| m.complete));
             });
         } else {
             let Ok(mut case) = Case3::arbitrary(&mut u) else {
@@ -127,9 +182,30 @@ fn main() {
             };
             case.muts.truncate(6);
             desc = format!("{case:?}");
+            let dump = dump.clone();
             std::thread::spawn(move || {
                 let check = |m: &idmesh::TetMesh| m.validate().map_err(|e| e.to_string());
-                let _ = tx.send(outcome(case.run(), check, |m| m.complete));
+                let r = case.run();
+                if let (Some(d), Ok(m)) = (&dump, &r) {
+                    use idmesh::io::tetgen as t;
+                    let base = d.join(format!("r{run}"));
+                    let args = if case.keep_surface {
+                        ""
+                    } else {
+                        "--require-delaunay"
+                    };
+                    write_files(
+                        &base,
+                        &[
+                            ("poly", &|w| t::write_plc_poly(w, &case.input(), 1)),
+                            ("node", &|w| t::write_node(w, m, 1, true)),
+                            ("ele", &|w| t::write_ele(w, m, 1)),
+                            ("face", &|w| t::write_face(w, m, 1, true)),
+                            ("args", &|w: &mut dyn Write| writeln!(w, "{args}")),
+                        ],
+                    );
+                }
+                let _ = tx.send(outcome(r, check, |m| m.complete));
             });
         }
         let got = match rx.recv_timeout(limit) {

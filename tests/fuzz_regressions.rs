@@ -607,3 +607,107 @@ fn features_within_rounding_of_a_tiny_facet_are_named() {
         }
     }
 }
+
+/// Under -Y, a Steiner point on the free edge of a tiny facet inside the domain (a fin: the
+/// tets around the point reach the facet from both sides) was reported as "internal error:
+/// … facet N is only partly on one side of it" (campaign seed 2 run 5891, seed 5 run 6528).
+/// No point moved off the edge can be on both sides of the facet, so, as for a free segment
+/// through the volume, it is refused by name as unsupported under -Y; without -Y the input
+/// is meshed or refused as input.
+#[test]
+fn steiner_point_on_a_fin_edge_under_keep_surface_is_named() {
+    let cases = [
+        mutate::Case3 {
+            seed: 37,
+            muts: vec![
+                Tiny {
+                    point: 54474,
+                    e: 229,
+                },
+                Tiny {
+                    point: 65205,
+                    e: 215,
+                },
+            ],
+            ratio: Some(245),
+            keep_surface: true,
+        },
+        mutate::Case3 {
+            seed: 73,
+            muts: vec![
+                Tiny {
+                    point: 34553,
+                    e: 77,
+                },
+                Tiny {
+                    point: 25514,
+                    e: 104,
+                },
+            ],
+            ratio: Some(78),
+            keep_surface: true,
+        },
+    ];
+    for (k, case) in cases.into_iter().enumerate() {
+        let plain = mutate::Case3 {
+            seed: case.seed,
+            muts: case.muts.clone(),
+            ratio: case.ratio,
+            keep_surface: false,
+        };
+        match within(20, move || case.run()) {
+            Err(idmesh::Error::Unsupported(m)) => {
+                assert!(m.contains("free edge of facet"), "case {k}: {m}");
+            }
+            r => panic!("case {k}: {:?}", r.map(|m| m.tets.len())),
+        }
+        match within(20, move || plain.run()) {
+            Ok(m) => m.validate().unwrap(),
+            Err(idmesh::Error::Input(_)) => {}
+            Err(e) => panic!("case {k} without -Y: {e}"),
+        }
+    }
+}
+
+/// Under -Y, points within a few ulps of a corner of the cubic hole (campaign seed 13 run
+/// 2309: point 17 is 8e-17 from the plane of the hole's bottom facet, on a box 0.01 wide)
+/// left the wedge of a Steiner point on the hole's edge no room for a point moved off it
+/// ("internal error: … no point of its wedge sees the whole group"). The point is named now.
+#[test]
+fn point_within_rounding_of_a_hole_corner_under_keep_surface_is_named() {
+    let case = mutate::Case3 {
+        seed: 106,
+        muts: vec![
+            Scale { e: 176 },
+            Scale { e: 4 },
+            NearDuplicate {
+                point: 9580,
+                e: 12,
+                dir: [8, 29, 75],
+            },
+            NearDuplicate {
+                point: 31562,
+                e: 10,
+                dir: [-3, 30, 46],
+            },
+            NearDuplicate {
+                point: 63071,
+                e: 51,
+                dir: [42, -31, -11],
+            },
+        ],
+        ratio: None,
+        keep_surface: true,
+    };
+    match within(20, move || case.run()) {
+        Err(idmesh::Error::Input(idmesh::InputError::PointTooCloseToFacet {
+            point,
+            distance,
+            ..
+        })) => {
+            assert_eq!(point, 17);
+            assert!(distance < 1e-15, "{distance}");
+        }
+        r => panic!("{:?}", r.map(|m| m.tets.len())),
+    }
+}

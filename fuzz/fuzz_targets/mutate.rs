@@ -301,10 +301,16 @@ pub struct Case2 {
 }
 
 impl Case2 {
-    /// Builds the input and meshes it with a Steiner budget.
-    pub fn run(&self) -> Result<idmesh::TriMesh, idmesh::Error> {
+    /// The mutated input.
+    pub fn input(&self) -> idmesh::Pslg {
         let mut g = seed2(self.seed);
         mutate2(&mut g, &self.muts[..self.muts.len().min(8)]);
+        g
+    }
+
+    /// Builds the input and meshes it with a Steiner budget.
+    pub fn run(&self) -> Result<idmesh::TriMesh, idmesh::Error> {
+        let g = self.input();
         let opts = idmesh::Options {
             min_angle: self.angle.map(|a| 20.0 + (a % 15) as f64),
             no_boundary_steiner: self.no_boundary_steiner,
@@ -329,10 +335,16 @@ pub struct Case3 {
 }
 
 impl Case3 {
-    /// Builds the input and meshes it with a Steiner budget.
-    pub fn run(&self) -> Result<idmesh::TetMesh, idmesh::Error> {
+    /// The mutated input.
+    pub fn input(&self) -> idmesh::Plc {
         let mut g = seed3(self.seed);
         mutate3(&mut g, &self.muts[..self.muts.len().min(8)]);
+        g
+    }
+
+    /// Builds the input and meshes it with a Steiner budget.
+    pub fn run(&self) -> Result<idmesh::TetMesh, idmesh::Error> {
+        let g = self.input();
         let opts = idmesh::Options3 {
             radius_edge: self.ratio.map(|r| 1.2 + (r % 9) as f64 / 10.0),
             keep_surface: self.keep_surface,

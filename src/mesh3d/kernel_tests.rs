@@ -917,3 +917,23 @@ fn filtered_insphere_agrees_with_the_exact_predicate_near_degeneracy() {
     ];
     assert!(insphere_small_integers(q[0], q[1], q[2], q[3], [0.2, 0.2, 0.2]).is_none());
 }
+
+#[test]
+fn tiny_point_sets_give_the_same_tets_as_their_scaled_copy() {
+    // Coordinates of 2^-1000: orientation and insphere products underflow, so the points
+    // are triangulated scaled up by a power of two (exact) and put back as they were.
+    let mut pts = random_points(200, 5);
+    for i in 0..3 {
+        for j in 0..3 {
+            for k in 0..3 {
+                pts.push([i as f64, j as f64, k as f64]); // cospherical ties
+            }
+        }
+    }
+    let s = 2f64.powi(-1000);
+    let tiny: Vec<[f64; 3]> = pts.iter().map(|p| p.map(|x| x * s)).collect();
+    let want = sorted_tets(&delaunay3d(&pts).unwrap());
+    let m = delaunay3d(&tiny).unwrap();
+    assert_eq!(m.vertices, tiny);
+    assert_eq!(sorted_tets(&m), want);
+}

@@ -309,6 +309,13 @@ fn tetrahedralize_scaled(plc: &Plc, opts: &Options3, s: f64) -> Result<TetMesh, 
 /// convex hull; there are no facets. Duplicate points are reported as errors. To watch its
 /// progress (or cancel it), call it inside [`crate::progress::observe`].
 pub fn delaunay3d(points: &[[f64; 3]]) -> Result<TetMesh, Error> {
+    if let Some(s) = crate::geometry::tiny_scale(points.iter()) {
+        // As in `tetrahedralize_scaled`: the insphere test underflows on such coordinates.
+        let up: Vec<[f64; 3]> = points.iter().map(|p| p.map(|x| x * s)).collect();
+        let mut m = delaunay3d(&up)?;
+        crate::geometry::scale_back(&mut m.vertices, points, s)?;
+        return Ok(m);
+    }
     catch_panic("", || {
         let mesh = delaunay::delaunay(points)?;
         validate::check_output(&mesh)?;

@@ -978,9 +978,18 @@ impl Mesher<'_> {
                 let d = |u: u32| crate::geometry::dist2_3(self.pts[u as usize], centroid);
                 d(x).total_cmp(&d(y))
             });
-        let Some(point) = nearest else {
-            return Error::Internal(internal);
-        };
+        nearest
+            .and_then(|point| self.too_close_to_facet(point, fid))
+            .unwrap_or(Error::Internal(internal))
+    }
+
+    /// `PointTooCloseToFacet` when input point `point` (not a vertex of facet `fid`) lies
+    /// within 2^8 size floors of the facet's plane: closer than the mesher can separate.
+    pub(super) fn too_close_to_facet(&self, point: u32, fid: u32) -> Option<Error> {
+        let info = &self.feat.facets[fid as usize];
+        if point as usize >= self.plc.points.len() || info.vertices.contains(&point) {
+            return None;
+        }
         let [a, b, cc] = info
             .plane
             .map(|x| glam::DVec3::from_array(self.pts[x as usize]));
@@ -989,13 +998,15 @@ impl Mesher<'_> {
             .dot(n)
             .abs();
         if distance.is_nan() || distance * distance >= self.floor2 * 65536.0 {
-            return Error::Internal(internal);
+            return None;
         }
-        Error::Input(crate::error::InputError::PointTooCloseToFacet {
-            point: point as usize,
-            facet: fid as usize,
-            distance,
-        })
+        Some(Error::Input(
+            crate::error::InputError::PointTooCloseToFacet {
+                point: point as usize,
+                facet: fid as usize,
+                distance,
+            },
+        ))
     }
 
     /// Brings a subface missing from the 3D mesh back by a flip in its facet mesh where the

@@ -195,6 +195,21 @@ impl Mesher<'_> {
                  be taken off: mesh without -Y"
             )));
         }
+        for g in &groups {
+            let mut seen: Vec<[u32; 3]> = g.floor.iter().map(|f| fkey(f.0)).collect();
+            seen.sort_unstable();
+            if let Some(w) = seen.windows(2).find(|w| w[0] == w[1]) {
+                // The group reaches a subface from both sides: s is on a free edge of a facet
+                // inside the domain (a fin), and a point moved off it would have to be on both
+                // sides of the facet at once.
+                let fid = self.feat.subface(w[0]).unwrap_or(NONE);
+                return Err(Error::Unsupported(format!(
+                    "-Y (keep the surface): the Steiner point {at:?} on a free edge of facet \
+                     {fid} (an edge of no other facet, with the domain all around it) cannot \
+                     be taken off: mesh without -Y"
+                )));
+            }
+        }
         // Each facet through s, triangulated again without it.
         let mut facets: Vec<u32> = floor_faces.iter().map(|f| f.2).collect();
         facets.sort_unstable();
@@ -224,9 +239,16 @@ impl Mesher<'_> {
             let floor = self.group_floor(g, &patches).map_err(fail)?;
             let link: Vec<[u32; 4]> = g.tets.iter().map(|&i| self.tets.verts(star[i])).collect();
             let Some(q) = self.best_apex(s, &link, &floor) else {
-                return Ok(Err(fail(
-                    "no point of its wedge sees the whole group".into(),
-                )));
+                // An input point within rounding of a facet through s can leave the wedge
+                // no room at all: that is the input's doing, and it is named.
+                let near = link.iter().flatten().find_map(|&x| {
+                    patches
+                        .iter()
+                        .find_map(|p| self.too_close_to_facet(x, p.facet))
+                });
+                return Ok(Err(near.unwrap_or_else(|| {
+                    fail("no point of its wedge sees the whole group".into())
+                })));
             };
             chosen.push((floor, link, q));
         }

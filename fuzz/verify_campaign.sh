@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Runs the independent checkers of ../shared/tools over the meshes a fuzz campaign dumped
+# (IDMESH_CAMPAIGN_DUMP=DIR, see examples/fuzz_campaign.rs): verify2d.py where a case has no
+# .face file, verify3d.py where it has one, with the options in its .args file
+# (--require-delaunay except under -Y). Prints each failing case and the counts; exit status 1
+# if any case fails.
+#   fuzz/verify_campaign.sh DIR [TOOLS-DIR]
+set -u
+dir=${1:?usage: verify_campaign.sh DIR [TOOLS-DIR]}
+tools=${2:-$(dirname "$0")/../../shared/tools}
+pass=0
+fail=0
+for poly in "$dir"/r*.poly; do
+    [ -e "$poly" ] || continue
+    b=${poly%.poly}
+    read -r args < "$b.args" || args=
+    if [ -e "$b.face" ]; then
+        # shellcheck disable=SC2086
+        out=$(python3 "$tools/verify3d.py" "$poly" "$b.node" "$b.ele" "$b.face" $args 2>&1)
+    else
+        # shellcheck disable=SC2086
+        out=$(python3 "$tools/verify2d.py" "$poly" "$b.node" "$b.ele" $args 2>&1)
+    fi
+    if [ $? -eq 0 ]; then
+        pass=$((pass + 1))
+    else
+        fail=$((fail + 1))
+        echo "FAIL $b ($args)"
+        echo "$out" | grep -v '^ *ok\|PASS' | head -8 | sed 's/^/    /'
+    fi
+done
+echo "verified: $pass passed, $fail failed ($dir)"
+[ "$fail" -eq 0 ]

@@ -937,3 +937,61 @@ fn tiny_point_sets_give_the_same_tets_as_their_scaled_copy() {
     assert_eq!(m.vertices, tiny);
     assert_eq!(sorted_tets(&m), want);
 }
+
+/// Two octahedra around one vertex, the second turned and twice as large: each star is closed
+/// and every edge's tets turn around it exactly once, but the tets wind twice around the
+/// centre.
+#[test]
+fn validate_catches_tets_winding_twice_around_a_vertex() {
+    let mut vertices = vec![[0.0; 3]];
+    let mut tets = Vec::new();
+    let mut neighbors = Vec::new();
+    let (c, s) = (0.6f64, 0.8f64);
+    let turn = |p: [f64; 3]| {
+        // About x, then about z: no axis point of the second star on the first's.
+        let q = [p[0], c * p[1] - s * p[2], s * p[1] + c * p[2]];
+        [
+            2.0 * (c * q[0] - s * q[1]),
+            2.0 * (s * q[0] + c * q[1]),
+            2.0 * q[2],
+        ]
+    };
+    for star in 0..2u32 {
+        let base = vertices.len() as u32;
+        for k in 0..6 {
+            let mut p = [0.0; 3];
+            p[k / 2] = if k % 2 == 0 { 1.0 } else { -1.0 };
+            vertices.push(if star == 0 { p } else { turn(p) });
+        }
+        // Octant o (bit i set: the negative axis i); vertex of axis i there.
+        let at = |o: u32, i: u32| base + 2 * i + ((o >> i) & 1);
+        for o in 0..8u32 {
+            let v = [0, at(o, 0), at(o, 1), at(o, 2)];
+            let n = [NONE, o ^ 1, o ^ 2, o ^ 4].map(|x| if x == NONE { x } else { 8 * star + x });
+            let p = |v: u32| vertices[v as usize];
+            if orient3d(p(v[0]), p(v[1]), p(v[2]), p(v[3])) < 0.0 {
+                tets.push(v);
+                neighbors.push(n);
+            } else {
+                tets.push([v[0], v[1], v[3], v[2]]);
+                neighbors.push([n[0], n[1], n[3], n[2]]);
+            }
+        }
+    }
+    let mesh = |tets: Vec<[u32; 4]>, neighbors: Vec<[u32; 4]>| TetMesh {
+        vertex_markers: vec![0; vertices.len()],
+        num_input_vertices: vertices.len(),
+        vertices: vertices.clone(),
+        tets,
+        neighbors,
+        complete: true,
+        ..TetMesh::default()
+    };
+    // One octahedron alone is fine (its unused second star's vertices are no tet's).
+    crate::mesh3d::validate::check_output(&mesh(tets[..8].to_vec(), neighbors[..8].to_vec()))
+        .unwrap();
+    match crate::mesh3d::validate::check_output(&mesh(tets, neighbors)) {
+        Err(Error::Internal(s)) => assert!(s.contains("around vertex 0"), "{s}"),
+        other => panic!("overlap not caught: {other:?}"),
+    }
+}

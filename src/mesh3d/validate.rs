@@ -26,8 +26,9 @@ pub fn validate_mesh(mesh: &TetMesh) -> Result<(), Error> {
 /// The check every 3D run ends with before it hands back a mesh (issue: never return a broken
 /// mesh as a success). Exact and linear in the mesh size: the structure of [`validate_mesh`]
 /// (lengths, orientation, neighbours, each face in at most two tets, every subface a face of a
-/// tet), and every edge's tets turning around it less than once (open fan) or exactly once
-/// (closed fan), which rules out tets that overlap while each pair of neighbours looks right.
+/// tet), every edge's tets turning around it less than once (open fan) or exactly once
+/// (closed fan), and the tets around every interior vertex forming one sphere, which rules out
+/// tets that overlap while each pair of neighbours looks right.
 /// It leaves out the empty-sphere test of [`validate_mesh`] (`-C`), which costs about a third
 /// of a run and checks a property the kernel keeps by construction.
 pub(crate) fn check_output(mesh: &TetMesh) -> Result<(), Error> {
@@ -128,6 +129,21 @@ fn check_edge_winding(m: &TetMesh) -> Result<(), String> {
         Some((n, apex))
     };
     let budget = m.tets.len() + 1;
+    // Per vertex: edges (fans of tets around an edge), tets, and faces with no tet behind.
+    let nv = m.vertices.len();
+    let (mut edges_at, mut tets_at, mut open_at) = (vec![0u32; nv], vec![0u32; nv], vec![0u32; nv]);
+    for (t, tv) in m.tets.iter().enumerate() {
+        for (i, &v) in tv.iter().enumerate() {
+            tets_at[v as usize] += 1;
+            if m.neighbors[t][i] == NONE {
+                for (j, &w) in tv.iter().enumerate() {
+                    if j != i {
+                        open_at[w as usize] += 1;
+                    }
+                }
+            }
+        }
+    }
     let (mut apexes, mut back): (Vec<u32>, Vec<u32>) = (Vec::new(), Vec::new());
     for t0 in 0..m.tets.len() as u32 {
         tick_pass(m, 4, t0 as usize)?;
@@ -138,6 +154,8 @@ fn check_edge_winding(m: &TetMesh) -> Result<(), String> {
             }
             let [a, b, c, d] = e.map(|k| tv[k]);
             mark(t0, a, b, &mut done);
+            edges_at[a as usize] += 1;
+            edges_at[b as usize] += 1;
             // Forward from t0 across a-b-c; if the fan opens there, backward across a-b-d.
             apexes.clear();
             back.clear();
@@ -180,6 +198,19 @@ fn check_edge_winding(m: &TetMesh) -> Result<(), String> {
                 ));
             }
         }
+    }
+    // Around a vertex with no open face, the faces opposite it must form one sphere: Euler
+    // characteristic V - E + F = 2 with F its tets, E = 3F/2 its faces and V its edges.
+    // With every edge turning exactly once, the link then covers the sphere of directions
+    // exactly once; tets wrapping twice around a vertex give two spheres (4), which the
+    // edges alone do not show.
+    if let Some(v) =
+        (0..nv).find(|&v| tets_at[v] > 0 && open_at[v] == 0 && 2 * edges_at[v] != tets_at[v] + 4)
+    {
+        return Err(format!(
+            "the tets around vertex {v} do not wind around it exactly once ({} tets, {} edges)",
+            tets_at[v], edges_at[v]
+        ));
     }
     Ok(())
 }

@@ -14,8 +14,9 @@
 //! `RUNS` may also be a range `FIRST..END` (such as `1660..1661`): the cases before `FIRST`
 //! are drawn but not run, so one case of a campaign can be rerun alone.
 //!
-//! With `IDMESH_CAMPAIGN_DUMP=DIR`, every mesh returned as a success is also written to `DIR`
-//! in Triangle's or TetGen's formats (`r<run>.poly` input, `.node`, `.ele`, and `.face` in 3D,
+//! With `IDMESH_CAMPAIGN_DUMP=DIR`, every mesh returned as a success (but an empty 2D one:
+//! segments enclosing no area give no triangles, as in Triangle) is also written to `DIR` in
+//! Triangle's or TetGen's formats (`r<run>.poly` input, `.node`, `.ele`, and `.face` in 3D,
 //! plus `.args`: the checker's options), so that an independent checker can read it:
 //! `fuzz/verify_campaign.sh DIR` runs `verify2d.py`/`verify3d.py` over them.
 
@@ -156,7 +157,11 @@ fn main() {
                     }
                 };
                 let r = case.run();
-                if let (Some(d), Ok(m)) = (&dump, &r) {
+                // An input whose segments enclose no area gives an empty mesh, as Triangle
+                // does; the checker reads no mesh there.
+                if let (Some(d), Some(m)) =
+                    (&dump, r.as_ref().ok().filter(|m| !m.triangles.is_empty()))
+                {
                     use idmesh::io::triangle as t;
                     let base = d.join(format!("r{run}"));
                     let args = if case.no_boundary_steiner {

@@ -215,11 +215,6 @@ typedef enum idm_input_error {
    * mesher's resolution, 2^-36 of the input's size).
    */
   IDM_INPUT_POINT_TOO_CLOSE_TO_FACET = 33,
-  /**
-   * The segments enclose no area (2D): `item` is the first point that is the end of one
-   * segment only (-1 when there is none); `part`: how many such points there are.
-   */
-  IDM_INPUT_OPEN_BOUNDARY = 34,
 } idm_input_error;
 
 /**

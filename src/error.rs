@@ -244,15 +244,6 @@ pub enum InputError {
         /// The first few facets on that edge.
         facets: Vec<usize>,
     },
-    /// The segments enclose no area (2D, without convex-hull mode): every triangle is outside
-    /// them or in a hole. `count` points are the end of exactly one segment (the boundary is
-    /// open there); `points` are the first few of them.
-    OpenBoundary {
-        /// How many points are the end of exactly one segment.
-        count: usize,
-        /// The first few of them.
-        points: Vec<usize>,
-    },
     /// A polygon of a surface mesh is not planar and cannot be triangulated on its own
     /// vertices: no projection along a coordinate axis makes it a simple polygon (or it has
     /// more vertices than the triangulation of non-planar polygons takes).
@@ -442,10 +433,6 @@ impl InputError {
                 facets: facets.into_iter().map(fc).collect(),
             },
             UntriangulablePolygon { facet } => UntriangulablePolygon { facet: fc(facet) },
-            OpenBoundary { count, points } => OpenBoundary {
-                count,
-                points: points.into_iter().map(pt).collect(),
-            },
             other => other,
         }
     }
@@ -635,23 +622,6 @@ impl fmt::Display for InputError {
                 "facet {facet} is not planar and cannot be triangulated on its own vertices: \
                  no projection along a coordinate axis makes it a simple polygon"
             ),
-            OpenBoundary { count, points } => {
-                write!(
-                    f,
-                    "the segments enclose no area: every triangle is outside them or in a hole"
-                )?;
-                if *count > 0 {
-                    write!(
-                        f,
-                        " ({count} point{} the end of one segment only, where the boundary is \
-                         open: {}{})",
-                        if *count == 1 { " is" } else { "s are" },
-                        join(points),
-                        if *count > points.len() { ", …" } else { "" }
-                    )?;
-                }
-                Ok(())
-            }
         }
     }
 }

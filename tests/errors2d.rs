@@ -350,43 +350,6 @@ fn hole_outside_the_domain_or_on_a_segment() {
 }
 
 #[test]
-fn segments_enclosing_no_area_name_the_open_ends() {
-    // The square with one side dropped: the boundary is open at points 2 and 3.
-    let mut p = square();
-    p.segments.retain(|s| *s != [2, 3]);
-    assert_eq!(p.segments.len(), 3);
-    let (e, msg) = input_err(&p);
-    assert_eq!(
-        e,
-        InputError::OpenBoundary {
-            count: 2,
-            points: vec![2, 3]
-        }
-    );
-    assert_names(&msg, "enclose no area");
-    assert_names(&msg, "2, 3");
-    // A closed square whose only region is a hole: nothing is left, and no end is open.
-    let mut p = square();
-    p.holes = vec![[0.5, 0.5]];
-    let (e, _) = input_err(&p);
-    assert_eq!(
-        e,
-        InputError::OpenBoundary {
-            count: 0,
-            points: vec![]
-        }
-    );
-    // In convex-hull mode the same open square is meshed.
-    let mut p = square();
-    p.segments.retain(|s| *s != [2, 3]);
-    let o = Options {
-        convex_hull: true,
-        ..Options::default()
-    };
-    assert_eq!(triangulate(&p, &o).expect("hull mode").triangles.len(), 2);
-}
-
-#[test]
 fn non_finite_hole() {
     let mut p = square();
     p.holes = vec![[f64::NAN, 0.5]];

@@ -89,9 +89,6 @@ pub enum idm_input_error {
     /// `item`: a point too close to facet `other` to mesh them apart (closer than the 3D
     /// mesher's resolution, 2^-36 of the input's size).
     IDM_INPUT_POINT_TOO_CLOSE_TO_FACET = 33,
-    /// The segments enclose no area (2D): `item` is the first point that is the end of one
-    /// segment only (-1 when there is none); `part`: how many such points there are.
-    IDM_INPUT_OPEN_BOUNDARY = 34,
 }
 
 /// An input error as C sees it: its kind and its `item`, `part` and `other` indices (-1: none).
@@ -205,10 +202,6 @@ fn describe(e: &InputError) -> (idm_input_error, [i64; 3]) {
         UntriangulablePolygon { facet } => {
             (IDM_INPUT_UNTRIANGULABLE_POLYGON, [ix(facet), none, none])
         }
-        OpenBoundary { count, ref points } => (
-            IDM_INPUT_OPEN_BOUNDARY,
-            [points.first().map_or(none, |&p| ix(p)), ix(count), none],
-        ),
     }
 }
 

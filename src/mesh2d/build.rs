@@ -769,24 +769,6 @@ fn classify(r: &mut Refiner, pslg: &Pslg, opts: &Options) -> Result<(), Error> {
         stack.push(t);
         cdt.flood(&mut stack, i as u32);
     }
-    let inside = |t: u32| {
-        cdt.alive(t) && !cdt.is_ghost(t) && !matches!(cdt.treg[t as usize], EXTERIOR | HOLE)
-    };
-    if !hull_mode && !(0..cdt.num_slots() as u32).any(inside) {
-        // An empty mesh is never what a caller wants: say why, naming the open ends.
-        let mut ends = vec![0u32; pslg.points.len()];
-        for s in &pslg.segments {
-            for &v in s {
-                ends[v as usize] += 1;
-            }
-        }
-        let open: Vec<usize> = (0..ends.len()).filter(|&v| ends[v] == 1).collect();
-        return Err(InputError::OpenBoundary {
-            count: open.len(),
-            points: open.into_iter().take(4).collect(),
-        }
-        .into());
-    }
     Ok(())
 }
 

@@ -418,21 +418,27 @@ pub fn proj(p: [f64; 3], axis: usize) -> [f64; 2] {
 
 /// The coordinate axis along which the triangle `abc` projects best: the largest magnitude
 /// among the three exact-sign projected orientations ([`orient2d_proj`], whose magnitudes
-/// approximate the normal's components and are zero exactly when they are), ties going to z,
-/// then x, then y. Deterministic in `a, b, c`, and for any non-degenerate triangle the chosen
-/// normal component is exactly non-zero, so projecting along it never flattens the triangle.
-/// For a degenerate (collinear) triangle every component is zero and the answer is 2.
-pub fn dominant_axis(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> usize {
-    let mut best = 2;
-    let mut mag = orient2d_proj(a, b, c, 2).abs();
-    for k in [0, 1] {
-        let v = orient2d_proj(a, b, c, k).abs();
-        if v > mag {
-            best = k;
-            mag = v;
+/// approximate the normal's components and are zero exactly when they are), ties going to x,
+/// then y. Deterministic in `a, b, c`; for a non-degenerate triangle the chosen normal
+/// component is exactly non-zero, so projecting along it never flattens the triangle. `None`
+/// exactly when the three points are collinear (every component zero). The one projection
+/// rule of the crate: facet meshes, the input checks and [`incircle3d`] all use it, so a facet
+/// is seen along the same axis everywhere.
+pub fn dominant_axis(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Option<usize> {
+    let mut best = (0.0f64, None);
+    for axis in 0..3 {
+        let v = orient2d_proj(a, b, c, axis).abs();
+        if v > best.0 {
+            best = (v, Some(axis));
         }
     }
-    best
+    best.1
+}
+
+/// Whether `a`, `b`, `c` lie on one line (exact: every coordinate projection is flat).
+#[inline]
+pub fn collinear3(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
+    dominant_axis(a, b, c).is_none()
 }
 
 /// The in-circle test inside a facet plane: for `p` coplanar with `a, b, c`, positive when `p`
@@ -457,7 +463,7 @@ pub fn dominant_axis(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> usize {
 /// 10^20 times the triangle's size on an input scaled by 2^-20, where a rounding error off the
 /// plane outweighed the in-plane distances and the facet meshes cascaded).
 pub fn incircle3d(a: [f64; 3], b: [f64; 3], c: [f64; 3], p: [f64; 3]) -> f64 {
-    let k = dominant_axis(a, b, c);
+    let k = dominant_axis(a, b, c).unwrap_or(2);
     let mut q = a;
     let span = (0..3)
         .map(|i| (b[i] - a[i]).abs().max((c[i] - a[i]).abs()))
@@ -807,13 +813,13 @@ mod tests {
         assert!(orient2d_proj(a, b, c, 2) > 0.0);
         assert_eq!(orient2d_proj(a, b, c, 0), 0.0);
         assert_eq!(orient2d_proj(a, b, c, 1), 0.0);
-        assert_eq!(dominant_axis(a, b, c), 2);
+        assert_eq!(dominant_axis(a, b, c), Some(2));
         // Normal (u×w) = (-4, 2, 1) for u = (1,2,0), w = (0,1,4)... checked per component.
         let (a, b, c) = ([1.0, 1.0, 1.0], [2.0, 3.0, 1.0], [1.0, 2.0, 5.0]);
         assert!(orient2d_proj(a, b, c, 0) > 0.0); // n_x = 2*4 - 0*1 = 8
         assert!(orient2d_proj(a, b, c, 1) < 0.0); // n_y = 0*0 - 1*4 = -4
         assert!(orient2d_proj(a, b, c, 2) > 0.0); // n_z = 1*1 - 2*0 = 1
-        assert_eq!(dominant_axis(a, b, c), 0);
+        assert_eq!(dominant_axis(a, b, c), Some(0));
         // The projected sign is the normal component's sign on random integer triangles.
         let mut rng = Rng(3);
         for _ in 0..2000 {
@@ -825,9 +831,16 @@ mod tests {
                     nk.signum() as i32
                 );
             }
-            let k = dominant_axis(fl(a), fl(b), fl(c));
+            // The first axis of the largest normal component (ties to x, then y), none for a
+            // collinear triple.
             let largest = n.iter().map(|v| v.abs()).max().unwrap();
-            assert_eq!(n[k].abs(), largest, "{a:?} {b:?} {c:?}");
+            let first = (0..3).find(|&k| largest > 0 && n[k].abs() == largest);
+            assert_eq!(
+                dominant_axis(fl(a), fl(b), fl(c)),
+                first,
+                "{a:?} {b:?} {c:?}"
+            );
+            assert_eq!(collinear3(fl(a), fl(b), fl(c)), largest == 0);
         }
     }
 

@@ -9,7 +9,7 @@ use super::order::brio_hilbert_order;
 use super::store::{Insertion, TetId, Tets, VertexId, FACE, GHOST};
 use super::{TetMesh, NONE};
 use crate::error::{Error, InputError, MAX_COORD};
-use crate::predicates::{orient2d, orient3d};
+use crate::predicates::{collinear3 as collinear, orient3d};
 
 /// Seed of the insertion-order shuffle (fixed: the output is reproducible).
 const ORDER_SEED: u64 = 0x1D3E_5A17_0000_0003;
@@ -31,16 +31,6 @@ pub(crate) fn check_points(points: &[[f64; 3]]) -> Result<(), Error> {
         .into());
     }
     Ok(())
-}
-
-/// Whether three points lie on one line (exact: all three coordinate projections are flat).
-fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
-    let xy = |p: [f64; 3]| [p[0], p[1]];
-    let yz = |p: [f64; 3]| [p[1], p[2]];
-    let zx = |p: [f64; 3]| [p[2], p[0]];
-    orient2d(xy(a), xy(b), xy(c)) == 0.0
-        && orient2d(yz(a), yz(b), yz(c)) == 0.0
-        && orient2d(zx(a), zx(b), zx(c)) == 0.0
 }
 
 /// Positions in `order` of the first four vertices that span a tetrahedron: the first vertex,

@@ -7,6 +7,7 @@ use crate::hash::FastMap as HashMap;
 use super::facet_mesh::Outline;
 use crate::input3d::Plc;
 use crate::predicates::orient2d;
+pub(crate) use crate::predicates::{dominant_axis, proj};
 
 /// Key of an undirected edge.
 #[inline]
@@ -73,19 +74,6 @@ pub(crate) struct Features {
     /// Per vertex: lies on a segment or facet (so simplices made only of such vertices may be
     /// features). A cheap filter before hash lookups.
     pub on_feature: Vec<bool>,
-}
-
-/// The axis of the largest normal component of triangle `abc`, decided from the exact signs of
-/// the three projected orientations: the largest magnitude is non-zero for non-collinear points.
-pub(crate) fn dominant_axis(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Option<usize> {
-    let mut best = (0.0f64, None);
-    for axis in 0..3 {
-        let o = orient2d(proj(a, axis), proj(b, axis), proj(c, axis)).abs();
-        if o > best.0 {
-            best = (o, Some(axis));
-        }
-    }
-    best.1
 }
 
 /// A triple of `verts` spanning their plane about as well as any: `first[0]`, the vertex
@@ -195,16 +183,6 @@ pub(crate) fn within_ulp_of_plane(t: [[f64; 3]; 3], p: [f64; 3], k: usize) -> bo
     };
     let (lo, hi) = (side(false), side(true));
     lo == 0.0 || hi == 0.0 || (lo < 0.0) != (hi < 0.0)
-}
-
-/// The projection that drops coordinate `axis` (cyclic order keeps orientation consistent).
-#[inline]
-pub(crate) fn proj(p: [f64; 3], axis: usize) -> [f64; 2] {
-    match axis {
-        0 => [p[1], p[2]],
-        1 => [p[2], p[0]],
-        _ => [p[0], p[1]],
-    }
 }
 
 impl Features {

@@ -28,7 +28,9 @@ use super::{Options3, TetMesh, NONE};
 use crate::error::Error;
 use crate::geometry::{tet_circumcenter, tet_radius_edge, tet_volume, tri_circumcenter3};
 use crate::input3d::Plc;
-use crate::predicates::{in_diametral_ball_seg3, in_diametral_ball_tri, orient3d};
+use crate::predicates::{
+    collinear3 as collinear, in_diametral_ball_seg3, in_diametral_ball_tri, orient3d,
+};
 use crate::progress::{stage, tick, Stage};
 
 /// Refinement stops (with an error) before the kernel's slot space runs out.
@@ -1673,10 +1675,6 @@ fn face_of(v: [u32; 4], f: usize) -> [u32; 3] {
 /// Whether `p` lies exactly on the line through `a` and `b` (2D).
 fn on_line2(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> bool {
     crate::predicates::orient2d(a, b, p) == 0.0
-}
-
-fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
-    super::features::dominant_axis(a, b, c).is_none()
 }
 
 /// Input angles below 60°: between two input edges at a vertex (for two edges of one facet,

@@ -34,7 +34,7 @@ use std::fmt;
 use super::plc::keep::clip_ears;
 use crate::error::{Error, InputError, Item};
 use crate::input3d::{by_coordinates, check_items, Facet, Plc};
-use crate::predicates::{dominant_axis, orient2d, orient2d_proj, orient3d, proj};
+use crate::predicates::{collinear3 as collinear, orient2d, orient3d, proj};
 use crate::NONE;
 
 /// Non-planar polygons with more corners than this are refused rather than clipped (ear
@@ -340,11 +340,6 @@ fn drop_repeats(mut q: Vec<u32>) -> Vec<u32> {
         q.pop();
     }
     q
-}
-
-/// Whether `a`, `b`, `c` lie on one line (exact: the best projection is flat too).
-fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
-    orient2d_proj(a, b, c, dominant_axis(a, b, c)) == 0.0
 }
 
 /// Three corners of `poly` spanning its plane, or `None` when all lie on one line.

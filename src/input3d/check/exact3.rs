@@ -10,36 +10,7 @@ use crate::predicates::{orient2d, orient3d};
 /// A point in space.
 pub(super) type P3 = [f64; 3];
 
-/// The projection that drops coordinate `axis`; the cyclic order keeps projected orientation
-/// equal to the sign of the normal's `axis` component.
-#[inline]
-pub(super) fn proj(p: P3, axis: usize) -> [f64; 2] {
-    match axis {
-        0 => [p[1], p[2]],
-        1 => [p[2], p[0]],
-        _ => [p[0], p[1]],
-    }
-}
-
-/// The axis whose projection of triangle `abc` has the largest area, or `None` when the three
-/// points are collinear. The largest magnitude is non-zero exactly when some projection is,
-/// so the choice is always a faithful projection of the triangle's plane.
-pub(super) fn dominant_axis(a: P3, b: P3, c: P3) -> Option<usize> {
-    let mut best = (0.0f64, None);
-    for axis in 0..3 {
-        let o = orient2d(proj(a, axis), proj(b, axis), proj(c, axis)).abs();
-        if o > best.0 {
-            best = (o, Some(axis));
-        }
-    }
-    best.1
-}
-
-/// Whether `a`, `b`, `c` lie on one line (exact).
-#[inline]
-pub(super) fn collinear(a: P3, b: P3, c: P3) -> bool {
-    dominant_axis(a, b, c).is_none()
-}
+pub(super) use crate::predicates::{collinear3 as collinear, dominant_axis, proj};
 
 /// For `p` collinear with distinct `a` and `b`: whether it lies strictly between them. Exact:
 /// coordinate comparisons along an axis on which `a` and `b` differ.

@@ -1,7 +1,7 @@
 //! Unit tests of PLC meshing: closed boxes, holes, shared facets, non-convex facets.
 
 use super::features::Features;
-use super::plc::{wedge_sharp_angle, Sharp};
+use super::plc::sharp::{wedge_sharp_angle, Sharp};
 use super::*;
 use crate::input3d::{Facet, Plc};
 use crate::predicates::orient3d;

@@ -1,7 +1,7 @@
 //! Which of many axis-aligned boxes may contain a point: a uniform grid over the boxes, each
 //! entered in the cells it overlaps.
 //!
-//! The protection balls and thin-wedge zones of small input angles (`Sharp` in `plc.rs`,
+//! The protection balls and thin-wedge zones of small input angles (`Sharp` in `sharp.rs`,
 //! the corner lopping of the paper's §4 small-angle protection) are asked about every
 //! candidate tetrahedron. On scanned surfaces nearly every input vertex is sharp (most surface
 //! triangles have an angle below 60°), so scanning them all made that question linear in the

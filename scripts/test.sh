@@ -30,6 +30,8 @@ echo "== cargo fmt --check"
 cargo fmt --check
 echo "== cargo clippy"
 cargo clippy --all-targets --quiet -- -D warnings
+echo "== cargo doc (no broken links, private items included)"
+RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --document-private-items --quiet
 echo "== cargo test"
 cargo test --quiet 2>&1 | tee /tmp/idmesh-cargo-test.log | grep -E '^(test result|error|failures|---- )' || true
 if grep -qE '^test result: FAILED|^error' /tmp/idmesh-cargo-test.log; then

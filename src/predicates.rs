@@ -130,8 +130,8 @@ pub fn insphere(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3], e: [f64; 3])
     insphere_fast(a, b, c, d, e)
 }
 
-/// [`insphere`] with a cheaper floating-point filter inlined (see [`insphere_filter`]); the
-/// rare uncertain cases go to [`insphere_near_degenerate`]. Only the sign of the result is
+/// [`insphere`] with a cheaper floating-point filter inlined (see `insphere_filter`); the
+/// rare uncertain cases go to `insphere_near_degenerate`. Only the sign of the result is
 /// meaningful.
 #[inline(always)]
 pub fn insphere_fast(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3], e: [f64; 3]) -> f64 {

@@ -6,7 +6,7 @@
 //! whether the run goes on; a run told to stop returns [`Error::Cancelled`] as soon as it next
 //! looks, with everything it built dropped.
 //!
-//! How it stays cheap: the meshers' loops call [`tick`] once per step, which only counts down
+//! How it stays cheap: the meshers' loops call `tick` once per step, which only counts down
 //! a thread-local counter; every [`CHECK_EVERY`] steps it reads the clock, and only when
 //! [`MIN_INTERVAL`] has passed since the last report does it call the callback. So the
 //! callback runs a bounded number of times per second (at most one per `MIN_INTERVAL`, plus
@@ -91,7 +91,7 @@ pub type ProgressFn = Arc<dyn Fn(Stage, u64, u64) -> ControlFlow<()> + Send + Sy
 /// The shortest time between two reports within a stage.
 pub const MIN_INTERVAL: Duration = Duration::from_millis(20);
 
-/// How many steps [`tick`] lets pass between two looks at the clock.
+/// How many steps `tick` lets pass between two looks at the clock.
 pub const CHECK_EVERY: u32 = 32;
 
 /// The callback of the run in progress on this thread, and where it stands.

@@ -915,7 +915,7 @@ impl FacetMesh {
         // Every vertex of the cavity must stay on its boundary: one inside would vanish from
         // this mesh while staying in the 3D mesh. Exact Delaunay cavities never swallow a
         // vertex; points rounded a hair off the plane, packed at 1e-8 of the model's size,
-        // did (armadillo.off -pq, before sliver removal stopped short of its sharp corners).
+        // did (a scanned model at -pq, before sliver removal stopped short of sharp corners).
         if self.cav.iter().any(|&t| {
             self.tv[t as usize]
                 .iter()

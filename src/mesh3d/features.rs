@@ -190,8 +190,8 @@ impl Features {
     /// plane ([`onto_plane`]): the facet mesh sees the same projected point, and the point is
     /// within one floating-point step of the plane. A construction from corners that are
     /// themselves rounded (a subface's circumcentre) tilts with their errors, and points made
-    /// from such points drift further off at each step (issue 12: triceratops.off, 56 ulps
-    /// after four generations). `q` itself when the walk fails (see [`onto_plane`]).
+    /// from such points drift further off at each step (issue 12: a scanned model drifted
+    /// 56 ulps off after four generations). `q` itself when the walk fails (see [`onto_plane`]).
     pub fn onto_facet_plane(&self, fid: u32, q: [f64; 3], points: &[[f64; 3]]) -> [f64; 3] {
         let f = &self.facets[fid as usize];
         onto_plane(f.plane.map(|v| points[v as usize]), q, f.axis).unwrap_or(q)

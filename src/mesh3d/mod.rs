@@ -2,7 +2,7 @@
 //! refinement to a radius-edge bound and a maximum volume.
 //!
 //! Pipeline: validate the input; insert every input point into one Bowyer–Watson kernel
-//! ([`store`]); keep a 1D mesh per input edge and a 2D Delaunay mesh per facet, refined lazily
+//! (`store.rs`); keep a 1D mesh per input edge and a 2D Delaunay mesh per facet, refined lazily
 //! until each appears in the 3D mesh (work queue of Definition 4.1); classify exterior, holes
 //! and regions by flooding up to facets; then remove skinny and oversized tetrahedra (Fig. 9),
 //! then slivers (`plc/sliver.rs`), keeping the mesh Delaunay.

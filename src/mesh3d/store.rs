@@ -18,7 +18,7 @@
 //!
 //! Insertion is two-phase so that a caller can inspect the cavity and veto the point
 //! (Provisional insertion, paper Fig. 8): [`Tets::find_cavity`], then [`Tets::commit_cavity`]
-//! or [`Tets::cancel_cavity`]. [`Tets::insert`] does locate + find + commit.
+//! or [`Tets::cancel_cavity`]. `Tets::insert` (in tests) does locate + find + commit.
 //!
 //! Keeping the input surface (TetGen's `-Y`) the store is *carved* ([`Tets::carve`]): the tets
 //! outside the domain are deleted and the faces they shared with the domain become *open* (no
@@ -724,7 +724,7 @@ impl Tets {
         }
     }
 
-    /// [`Tets::insert`] reporting every outcome as a value.
+    /// `Tets::insert` (in tests) reporting every outcome as a value.
     pub fn try_insert(&mut self, v: VertexId, hint: TetId) -> Insertion {
         let p = self.point(v);
         match self.locate(p, hint) {

@@ -1,5 +1,5 @@
 //! Exact checks of the 3D mesh invariants: on an output [`TetMesh`] ([`validate_mesh`]) and on
-//! the kernel's [`Tets`] store ([`Tets::check_structure`], [`Tets::check_locally_delaunay`]).
+//! the kernel's [`Tets`] store (`Tets::check_structure` and `Tets::check_locally_delaunay`, in tests).
 //!
 //! Every decision is an exact predicate. Floating point only *selects candidates* for the
 //! empty-circumsphere check (a uniform grid around each circumsphere, widened by a bound on the
@@ -52,7 +52,7 @@ pub(crate) fn check_output(mesh: &TetMesh) -> Result<(), Error> {
 /// facet's plane along the facet's projection axis (exact orientations,
 /// [`super::features::within_ulp_of_plane`]): what [`super::features::Features::onto_facet_plane`]
 /// guarantees. A point further off makes the boundary faces around it leave the input
-/// surface (issue 12: triceratops.off). Points on input edges (in every facet through the
+/// surface (issue 12, on a scanned model). Points on input edges (in every facet through the
 /// edge, on none exactly) are not checked here. Checked before the mesh is moved back to the
 /// caller's frame, whose grid rounds the points once more.
 pub(crate) fn check_facet_points(

@@ -12,7 +12,7 @@
 //!   wedge. Every face of the group's boundary (its faces opposite `s` and the new facet
 //!   triangles) joined to a point strictly inside the group's kernel is a positive tet, and
 //!   the kernel has interior right next to `s`, so such a point exists; it is picked with
-//!   exact orientation tests ([`Tets::replace`] checks the result again).
+//!   exact orientation tests ([`crate::mesh3d::store::Tets::replace`] checks the result again).
 //! * In floating point the kernel can still be empty: where nearly coplanar facets meet (a
 //!   fan of triangles at 179.99°), the point moved off for one split point of their edge sits
 //!   in a wedge a few rounding errors thick and flattens the next split point's tets. Such a
@@ -26,7 +26,7 @@
 //! Delaunay. The result is a valid tetrahedralization whose boundary is exactly the input
 //! surface; it is not Delaunay next to the surface. Quality refinement afterwards inserts
 //! interior points only, with cavities that stop at subfaces and are shrunk to star shape
-//! ([`Tets::find_cavity_walled`]).
+//! ([`crate::mesh3d::store::Tets::find_cavity_walled`]).
 
 use super::{Mesher, UNKNOWN};
 use crate::error::Error;

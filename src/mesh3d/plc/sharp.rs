@@ -306,8 +306,8 @@ impl Sharp {
 
     /// Whether all four vertices `vs` lie deep inside one sharp vertex's protection ball,
     /// within [`DEEP_FRACTION`] of its radius. Sliver removal excuses such a tet whatever the
-    /// angle there: where input edges meet a little above the target (armadillo.off has
-    /// corners of 15.3° and 17.3°), a tet on the corner's subfaces can still have a dihedral
+    /// angle there: where input edges meet a little above the target (scanned models have
+    /// corners of 15° to 17°), a tet on the corner's subfaces can still have a dihedral
     /// angle below it, and each point that removes one makes a smaller one closer to the apex,
     /// until floating point runs out. Larger tets there are still treated, so that fan angles
     /// of triangulated surfaces keep no sliver (`exempts_sliver`).

@@ -745,6 +745,40 @@ fn validate_mesh_catches_corruption() {
 }
 
 #[test]
+fn validate_catches_neighbours_on_the_same_side_of_their_face() {
+    // Two positively oriented tets on face abc, both apexes above it, linked as neighbours:
+    // each tet alone is fine, together they overlap. Both list the face in the same cyclic
+    // order, which is what the (coordinate-free) side test looks at.
+    let (a, b, c, d) = (
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+    );
+    let mut m = delaunay3d(&[a, b, c, d]).unwrap();
+    m.validate().unwrap();
+    let t = m.tets[0];
+    let (apex, k) = (0..4).map(|k| (t[k], k)).find(|&(v, _)| v == 3).unwrap();
+    assert_eq!(apex, 3);
+    m.vertices.push([0.1, 0.1, 2.0]);
+    m.vertex_markers.push(0);
+    let mut u = t;
+    u[k] = 4;
+    assert!(
+        orient3d(a, b, c, [0.1, 0.1, 2.0]) < 0.0,
+        "both apexes above abc"
+    );
+    m.tets.push(u);
+    m.neighbors[0][k] = 1;
+    m.neighbors.push([NONE; 4]);
+    m.neighbors[1][k] = 0;
+    match m.validate() {
+        Err(Error::Internal(s)) => assert!(s.contains("same side"), "{s}"),
+        other => panic!("overlap not caught: {other:?}"),
+    }
+}
+
+#[test]
 fn coplanar_circumcircle_test_is_exact() {
     // Triangle in the tilted plane x + y + z = 3 (integer points).
     let (a, b, c) = ([3.0, 0.0, 0.0], [0.0, 3.0, 0.0], [0.0, 0.0, 3.0]);

@@ -77,11 +77,6 @@ pub(crate) fn check_facet_points(
     Ok(())
 }
 
-/// Around every edge, the tets sharing it (walked through neighbours) turn exactly once when
-/// they close up, and less than once when the fan is open. Measured exactly: with `c0` the
-/// first apex, the signs of `orient3d(a, b, c0, c)` along the fan change at most once, and no
-/// later apex lies on `c0`'s half-plane (that would be a second turn). Each fan is walked once
-/// (a bit per tet edge marks it done), so the check costs O(1) per tet edge.
 /// One step of a check's pass over the tets, for progress reports and cancel (on a 1M-tet
 /// mesh the check takes seconds). `pass` numbers the passes over the tets, [`PASSES`] of them;
 /// a cancel returns an error text that [`crate::progress::observe`] turns into the run's
@@ -95,6 +90,11 @@ fn tick_pass(m: &TetMesh, pass: usize, t: usize) -> Result<(), String> {
 /// The passes over the tets a full check makes (for the progress estimate).
 const PASSES: usize = 6;
 
+/// Around every edge, the tets sharing it (walked through neighbours) turn exactly once when
+/// they close up, and less than once when the fan is open. Measured exactly: with `c0` the
+/// first apex, the signs of `orient3d(a, b, c0, c)` along the fan change at most once, and no
+/// later apex lies on `c0`'s half-plane (that would be a second turn). Each fan is walked once
+/// (a bit per tet edge marks it done), so the check costs O(1) per tet edge.
 fn check_edge_winding(m: &TetMesh) -> Result<(), String> {
     // Local edge number of the pair of positions (i, j), i < j.
     const EDGE_BIT: [[u8; 4]; 4] = [[0, 1, 2, 4], [1, 0, 8, 16], [2, 8, 0, 32], [4, 16, 32, 0]];
@@ -106,7 +106,22 @@ fn check_edge_winding(m: &TetMesh) -> Result<(), String> {
         [1, 3, 2, 0],
         [2, 3, 0, 1],
     ];
-    let p = |v: u32| m.vertices[v as usize];
+    // Vertices renumbered in the order the tets first list them, coordinates copied in that
+    // order: the walks below read vertices as the tets list them, and tets made in the
+    // kernel's spatial insertion order would otherwise hit vertices numbered in the input's
+    // order (random for a scattered point set), a cache miss each.
+    let nv = m.vertices.len();
+    let mut local = vec![NONE; nv];
+    let mut coords: Vec<[f64; 3]> = Vec::with_capacity(nv);
+    for tv in &m.tets {
+        for &v in tv {
+            if local[v as usize] == NONE {
+                local[v as usize] = coords.len() as u32;
+                coords.push(m.vertices[v as usize]);
+            }
+        }
+    }
+    let p = |v: u32| coords[local[v as usize] as usize];
     let mut done = vec![0u8; m.tets.len()];
     let mark = |t: u32, a: u32, b: u32, done: &mut [u8]| {
         let tv = m.tets[t as usize];
@@ -129,16 +144,17 @@ fn check_edge_winding(m: &TetMesh) -> Result<(), String> {
         Some((n, apex))
     };
     let budget = m.tets.len() + 1;
-    // Per vertex: edges (fans of tets around an edge), tets, and faces with no tet behind.
-    let nv = m.vertices.len();
+    // Per vertex (local numbering): edges (fans of tets around an edge), tets, and faces with
+    // no tet behind.
     let (mut edges_at, mut tets_at, mut open_at) = (vec![0u32; nv], vec![0u32; nv], vec![0u32; nv]);
+    let at = |v: u32| local[v as usize] as usize;
     for (t, tv) in m.tets.iter().enumerate() {
         for (i, &v) in tv.iter().enumerate() {
-            tets_at[v as usize] += 1;
+            tets_at[at(v)] += 1;
             if m.neighbors[t][i] == NONE {
                 for (j, &w) in tv.iter().enumerate() {
                     if j != i {
-                        open_at[w as usize] += 1;
+                        open_at[at(w)] += 1;
                     }
                 }
             }
@@ -154,8 +170,8 @@ fn check_edge_winding(m: &TetMesh) -> Result<(), String> {
             }
             let [a, b, c, d] = e.map(|k| tv[k]);
             mark(t0, a, b, &mut done);
-            edges_at[a as usize] += 1;
-            edges_at[b as usize] += 1;
+            edges_at[at(a)] += 1;
+            edges_at[at(b)] += 1;
             // Forward from t0 across a-b-c; if the fan opens there, backward across a-b-d.
             apexes.clear();
             back.clear();
@@ -204,12 +220,13 @@ fn check_edge_winding(m: &TetMesh) -> Result<(), String> {
     // With every edge turning exactly once, the link then covers the sphere of directions
     // exactly once; tets wrapping twice around a vertex give two spheres (4), which the
     // edges alone do not show.
-    if let Some(v) =
-        (0..nv).find(|&v| tets_at[v] > 0 && open_at[v] == 0 && 2 * edges_at[v] != tets_at[v] + 4)
+    if let Some(i) = (0..coords.len())
+        .find(|&i| tets_at[i] > 0 && open_at[i] == 0 && 2 * edges_at[i] != tets_at[i] + 4)
     {
+        let v = local.iter().position(|&l| l as usize == i).unwrap_or(i);
         return Err(format!(
             "the tets around vertex {v} do not wind around it exactly once ({} tets, {} edges)",
-            tets_at[v], edges_at[v]
+            tets_at[i], edges_at[i]
         ));
     }
     Ok(())
@@ -380,22 +397,24 @@ fn check_tets(m: &TetMesh) -> Result<(), String> {
             };
             let face = FACE[i].map(|k| tv[k]);
             let other = m.tets[n as usize];
-            let mut fa = face;
-            let mut fb = FACE[j].map(|k| other[k]);
-            fa.sort_unstable();
-            fb.sort_unstable();
-            if fa != fb {
+            let seen = FACE[j].map(|k| other[k]);
+            let Some(k) = seen.iter().position(|&v| v == face[0]) else {
+                return Err(format!(
+                    "tets {t} {tv:?} and {n} {other:?} are neighbours but do not share face {face:?}"
+                ));
+            };
+            let (next, prev) = (seen[(k + 1) % 3], seen[(k + 2) % 3]);
+            if !((next == face[1] && prev == face[2]) || (next == face[2] && prev == face[1])) {
                 return Err(format!(
                     "tets {t} {tv:?} and {n} {other:?} are neighbours but do not share face {face:?}"
                 ));
             }
-            // The face is outward for t (t's apex below); n's apex must lie strictly above.
-            // (Tested once per face, from the lower-numbered tet.)
-            if (n as usize) < t {
-                continue;
-            }
-            let [x, y, z] = face.map(p);
-            if orient3d(x, y, z, p(other[j])) >= 0.0 {
+            // `FACE[i]` lists the face outward for its tet: orient3d(face, own apex) > 0 for a
+            // positively oriented tet (checked exactly above). So n's apex lies strictly on the
+            // other side of the face exactly when n lists the face in the opposite cyclic
+            // order (orient3d changes sign with an odd permutation): a combinatorial test, no
+            // coordinates read.
+            if next == face[1] {
                 return Err(format!(
                     "tets {t} and {n} lie on the same side of their shared face {face:?}"
                 ));

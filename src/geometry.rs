@@ -308,6 +308,26 @@ pub fn tet_dihedral_range(c: [[f64; 3]; 4]) -> (f64, f64) {
     )
 }
 
+/// Whether some dihedral angle of the tetrahedron is below `target` degrees or above
+/// `180 − target` (`0 < target < 90`): the same question as comparing [`tet_dihedral_range`]
+/// with the two bounds, without its square roots and arc cosines. The angle between faces `k`
+/// and `l` has cosine `−n̂k·n̂l`; it lies outside `[target, 180 − target]` exactly when that
+/// cosine's magnitude exceeds `cos(target)`, i.e. `(nk·nl)² > cos²(target)·|nk|²·|nl|²` for any
+/// normals of the faces, whatever their orientation or length. The sliver pass asks this of
+/// every tet in each round.
+pub fn tet_dihedral_outside(c: [[f64; 3]; 4], target: f64) -> bool {
+    let p = c.map(v3);
+    let n: [DVec3; 4] = std::array::from_fn(|i| {
+        let f = [(i + 1) % 4, (i + 2) % 4, (i + 3) % 4].map(|k| p[k]);
+        (f[1] - f[0]).cross(f[2] - f[0])
+    });
+    let len2 = n.map(|v| v.length_squared());
+    let cos2 = target.to_radians().cos().powi(2);
+    [(2, 3), (1, 3), (1, 2), (0, 3), (0, 2), (0, 1)]
+        .into_iter()
+        .any(|(k, l)| n[k].dot(n[l]).powi(2) > cos2 * len2[k] * len2[l])
+}
+
 /// The unit outward normals of the faces of a tetrahedron, face `i` opposite corner `i`.
 fn outward_normals(c: [[f64; 3]; 4]) -> [DVec3; 4] {
     let p = c.map(v3);
@@ -405,6 +425,34 @@ mod tests {
             let hi = a.iter().fold(0.0f64, |m, &x| m.max(x));
             assert_eq!(tet_dihedral_range(c), (lo, hi), "{c:?}");
         }
+    }
+
+    #[test]
+    fn dihedral_outside_agrees_with_the_angles() {
+        // Tets from regular to needle-, cap- and sliver-shaped (a vertex pulled towards the
+        // opposite face, an edge, another vertex), against targets from 1 to 60 degrees.
+        let mut seed = 7u64;
+        let mut rnd = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut decided = [0usize; 2];
+        for i in 0..4000 {
+            let mut c: [[f64; 3]; 4] = std::array::from_fn(|_| [rnd(), rnd(), rnd()]);
+            let squash = if i % 2 == 0 { 1.0 } else { 10f64.powi(-((i % 7) as i32)) };
+            c[3] = std::array::from_fn(|k| c[0][k] + squash * (c[3][k] - c[0][k]));
+            let target = 1.0 + 29.0 * rnd();
+            let (lo, hi) = tet_dihedral_range(c);
+            // Angles within 1e-6 degrees of a bound are left out: the two computations round
+            // differently there.
+            if (lo - target).abs() < 1e-6 || (hi - (180.0 - target)).abs() < 1e-6 {
+                continue;
+            }
+            let want = lo < target || hi > 180.0 - target;
+            assert_eq!(tet_dihedral_outside(c, target), want, "{c:?} {target}");
+            decided[usize::from(want)] += 1;
+        }
+        assert!(decided[0] > 500 && decided[1] > 500, "{decided:?}");
     }
 
     #[test]

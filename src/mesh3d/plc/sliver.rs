@@ -48,7 +48,9 @@
 
 use super::{face_of, Mesher, EDGES, UNKNOWN};
 use crate::error::Error;
-use crate::geometry::{dist2_3, tet_circumcenter, tet_dihedral_range, tet_radius_edge};
+use crate::geometry::{
+    dist2_3, tet_circumcenter, tet_dihedral_outside, tet_dihedral_range, tet_radius_edge,
+};
 use crate::mesh3d::store::{Located, GHOST};
 use crate::predicates::{in_diametral_ball_seg3, in_diametral_ball_tri, insphere, orient3d};
 use crate::progress::tick;
@@ -125,8 +127,7 @@ impl Mesher<'_> {
     /// Whether tet `t` (corners `c`) misses the dihedral target: an angle below `target` or
     /// above `180 − target`.
     fn is_sliver(c: [[f64; 3]; 4], target: f64) -> bool {
-        let (lo, hi) = tet_dihedral_range(c);
-        lo < target || hi > 180.0 - target
+        tet_dihedral_outside(c, target)
     }
 
     /// The tets inside the domain missing the target that the pass treats, and how many others

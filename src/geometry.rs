@@ -439,7 +439,7 @@ mod tests {
         let mut decided = [0usize; 2];
         for i in 0..4000 {
             let mut c: [[f64; 3]; 4] = std::array::from_fn(|_| [rnd(), rnd(), rnd()]);
-            let squash = if i % 2 == 0 { 1.0 } else { 10f64.powi(-((i % 7) as i32)) };
+            let squash = if i % 2 == 0 { 1.0 } else { 10f64.powi(-(i % 7)) };
             c[3] = std::array::from_fn(|k| c[0][k] + squash * (c[3][k] - c[0][k]));
             let target = 1.0 + 29.0 * rnd();
             let (lo, hi) = tet_dihedral_range(c);

@@ -473,9 +473,6 @@ impl Mesher<'_> {
         if self.walled {
             return self.take_tet_walled(t, c, m);
         }
-        // `cc` is in t's circumsphere, so the walk to it starts next to it (the last insertion
-        // may be anywhere: the queue is not in spatial order).
-        self.hint = t;
         match self.insert3d(m, true) {
             Ok(()) => {
                 self.steiner += 1;

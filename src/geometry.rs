@@ -433,13 +433,19 @@ mod tests {
         // opposite face, an edge, another vertex), against targets from 1 to 60 degrees.
         let mut seed = 7u64;
         let mut rnd = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (seed >> 11) as f64 / (1u64 << 53) as f64
         };
         let mut decided = [0usize; 2];
         for i in 0..4000 {
             let mut c: [[f64; 3]; 4] = std::array::from_fn(|_| [rnd(), rnd(), rnd()]);
-            let squash = if i % 2 == 0 { 1.0 } else { 10f64.powi(-(i % 7)) };
+            let squash = if i % 2 == 0 {
+                1.0
+            } else {
+                10f64.powi(-(i % 7))
+            };
             c[3] = std::array::from_fn(|k| c[0][k] + squash * (c[3][k] - c[0][k]));
             let target = 1.0 + 29.0 * rnd();
             let (lo, hi) = tet_dihedral_range(c);

@@ -430,6 +430,34 @@ fn poly_with_zero_vertices_reads_the_node_file() {
 }
 
 #[test]
+fn segments_enclosing_no_area_give_an_empty_mesh_and_a_warning_naming_an_open_end() {
+    // The unit square without its left side (Triangle's box.poly case): as Triangle, an
+    // empty mesh and exit status 0; the warning names an open end, numbered as in the file.
+    let d = TempDir::new("open");
+    let open = SQUARE.replace("4 1\n", "3 1\n").replace("4 4 1 7\n", "");
+    d.write("open.poly", &open);
+    let out = idmesh(&d.0, &["triangle", "-pq30Q", "open.poly"]);
+    ok(&out);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.lines().count() == 1
+            && err.contains("warning: the mesh has no triangles")
+            && err.contains("2 of their ends are open, e.g. at point 1"),
+        "{err:?}"
+    );
+    assert!(read_mesh(&d, "open.1", 1).1.is_empty());
+    // Closed again: no warning.
+    d.write("sq.poly", SQUARE);
+    let out = idmesh(&d.0, &["triangle", "-pq30Q", "sq.poly"]);
+    ok(&out);
+    assert!(
+        out.stderr.is_empty(),
+        "{:?}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
 fn steiner_cap_warns_but_writes_the_mesh() {
     let d = TempDir::new("steiner");
     d.write("sq.poly", SQUARE);

@@ -145,6 +145,15 @@ fn run(sw: &Switches, file: &str) -> Result<(), String> {
         );
     }
 
+    if files.poly && mesh.triangles.is_empty() && !input.pslg.points.is_empty() {
+        // As Triangle, an input whose segments enclose no area gives an empty mesh; unlike
+        // Triangle, the user is told why (printed even with -Q).
+        eprintln!(
+            "idmesh: warning: the mesh has no triangles: {}",
+            why_empty(&input)
+        );
+    }
+
     let write_start = Instant::now();
     let base = if sw.zero_based { 0 } else { input.base };
     // The bar goes before the file names are printed.
@@ -271,6 +280,32 @@ fn write_outputs(
         })?;
     }
     Ok(())
+}
+
+/// Why a mesh came out empty: open ends of the segments (points where an odd number of
+/// segments end; a closed boundary has none), numbered as in the input, or else the holes.
+fn why_empty(input: &TriangleInput) -> String {
+    let mut ends = vec![0u32; input.pslg.points.len()];
+    for s in &input.pslg.segments {
+        for &v in s {
+            if let Some(e) = ends.get_mut(v as usize) {
+                *e += 1;
+            }
+        }
+    }
+    let open: Vec<usize> = (0..ends.len()).filter(|&v| ends[v] % 2 == 1).collect();
+    if input.pslg.segments.is_empty() {
+        "no segment encloses an area (-p without segments; -c meshes the convex hull)".into()
+    } else if let Some(&v) = open.first() {
+        format!(
+            "the segments enclose no area: {} of their ends are open, e.g. at point {} \
+             (-c meshes the convex hull)",
+            open.len(),
+            v + input.base as usize
+        )
+    } else {
+        "every triangle is outside the segments or in a hole".into()
+    }
 }
 
 fn statistics(input: &TriangleInput, mesh: &TriMesh, [read, meshing, write]: [Duration; 3]) {

@@ -316,7 +316,15 @@ pub fn tet_dihedral_range(c: [[f64; 3]; 4]) -> (f64, f64) {
 /// normals of the faces, whatever their orientation or length. The sliver pass asks this of
 /// every tet in each round.
 pub fn tet_dihedral_outside(c: [[f64; 3]; 4], target: f64) -> bool {
-    let p = c.map(v3);
+    // In units of the tet (corner 0 at the origin, largest offset 1): the products below are
+    // edge lengths to the eighth power, which would underflow or overflow at other scales.
+    let o = v3(c[0]);
+    let d = c.map(|q| v3(q) - o);
+    let size = d.iter().map(|v| v.abs().max_element()).fold(0.0, f64::max);
+    if size == 0.0 || !size.is_finite() {
+        return false;
+    }
+    let p = d.map(|v| v / size);
     let n: [DVec3; 4] = std::array::from_fn(|i| {
         let f = [(i + 1) % 4, (i + 2) % 4, (i + 3) % 4].map(|k| p[k]);
         (f[1] - f[0]).cross(f[2] - f[0])
@@ -457,6 +465,12 @@ mod tests {
             let want = lo < target || hi > 180.0 - target;
             assert_eq!(tet_dihedral_outside(c, target), want, "{c:?} {target}");
             decided[usize::from(want)] += 1;
+            // The same answer at any scale (powers of two: exactly the same tet, scaled).
+            for k in [-1000, -600, 600, 1000] {
+                let m = 2f64.powi(k);
+                let scaled = c.map(|q| q.map(|x| x * m));
+                assert_eq!(tet_dihedral_outside(scaled, target), want, "{c:?} 2^{k}");
+            }
         }
         assert!(decided[0] > 500 && decided[1] > 500, "{decided:?}");
     }

@@ -1024,8 +1024,40 @@ fn validate_catches_tets_winding_twice_around_a_vertex() {
     // One octahedron alone is fine (its unused second star's vertices are no tet's).
     crate::mesh3d::validate::check_output(&mesh(tets[..8].to_vec(), neighbors[..8].to_vec()))
         .unwrap();
-    match crate::mesh3d::validate::check_output(&mesh(tets, neighbors)) {
+    match crate::mesh3d::validate::check_output(&mesh(tets.clone(), neighbors.clone())) {
         Err(Error::Internal(s)) => assert!(s.contains("around vertex 0"), "{s}"),
         other => panic!("overlap not caught: {other:?}"),
+    }
+    // The same with every vertex's aimed direction on a face of its first tet, so that no
+    // star is proved by counting: the edge walks and the Euler count must catch it.
+    let tie = |c: [[f64; 3]; 4]| [0, 1, 2].map(|k| (c[1][k] + c[2][k]) / 2.0);
+    let aimed = crate::mesh3d::validate::check_output_aimed;
+    aimed(&mesh(tets[..8].to_vec(), neighbors[..8].to_vec()), tie).unwrap();
+    match aimed(&mesh(tets, neighbors), tie) {
+        Err(Error::Internal(s)) => assert!(
+            s.contains("around vertex 0 do not wind around it exactly once (16 tets, 12 edges)"),
+            "{s}"
+        ),
+        other => panic!("overlap not caught: {other:?}"),
+    }
+}
+
+/// The vertex-star proof and its fallback agree on valid meshes: Delaunay meshes of random
+/// points and of a grid (cospherical ties everywhere) pass with the usual aim points and with
+/// aims that tie on every vertex, which leaves every edge to the walks.
+#[test]
+fn output_check_passes_valid_meshes_with_and_without_ties() {
+    let grid: Vec<[f64; 3]> = (0..64)
+        .map(|i| [i / 16, i / 4 % 4, i % 4].map(f64::from))
+        .collect();
+    let tie = |c: [[f64; 3]; 4]| [0, 1, 2].map(|k| (c[1][k] + c[2][k]) / 2.0);
+    let centroid =
+        |c: [[f64; 3]; 4]| [0, 1, 2].map(|k| (c[0][k] + c[1][k] + c[2][k] + c[3][k]) / 4.0);
+    for pts in [random_points(300, 7), grid] {
+        let m = delaunay3d(&pts).unwrap();
+        crate::mesh3d::validate::check_output(&m).unwrap();
+        for aim in [tie as crate::mesh3d::validate::Aim, centroid] {
+            crate::mesh3d::validate::check_output_aimed(&m, aim).unwrap();
+        }
     }
 }

@@ -1,6 +1,10 @@
 //! Exact checks of the 3D mesh invariants: on an output [`TetMesh`] ([`validate_mesh`]) and on
 //! the kernel's [`Tets`] store (`Tets::check_structure` and `Tets::check_locally_delaunay`, in tests).
 //!
+//! The output check proves that the tets around each interior vertex wind around it exactly
+//! once by one exact count per vertex ([`Stars`]), and walks around edges only on the
+//! boundary: a pass that streams through the tets instead of chasing neighbours.
+//!
 //! Every decision is an exact predicate. Floating point only *selects candidates* for the
 //! empty-circumsphere check (a uniform grid around each circumsphere, widened by a bound on the
 //! circumcenter's rounding error); a vertex is reported only when exact insphere says so.
@@ -26,16 +30,19 @@ pub fn validate_mesh(mesh: &TetMesh) -> Result<(), Error> {
 /// The check every 3D run ends with before it hands back a mesh (issue: never return a broken
 /// mesh as a success). Exact and linear in the mesh size: the structure of [`validate_mesh`]
 /// (lengths, orientation, neighbours, each face in at most two tets, every subface a face of a
-/// tet), every edge's tets turning around it less than once (open fan) or exactly once
-/// (closed fan), and the tets around every interior vertex forming one sphere, which rules out
-/// tets that overlap while each pair of neighbours looks right.
-/// It leaves out the empty-sphere test of [`validate_mesh`] (`-C`), which costs about a third
+/// tet), the tets around every interior vertex covering the directions around it exactly
+/// once ([`Stars`], one count per vertex), and every other edge's tets turning around it less
+/// than once (open fan) or exactly once (closed fan): this rules out tets that overlap while
+/// each pair of neighbours looks right. It leaves out the empty-sphere test of [`validate_mesh`] (`-C`), which costs about a third
 /// of a run and checks a property the kernel keeps by construction.
 pub(crate) fn check_output(mesh: &TetMesh) -> Result<(), Error> {
+    check_output_aimed(mesh, aim_into)
+}
+
+/// [`check_output`] with the aim points of [`Stars`] chosen by `aim` (tests force ties).
+pub(crate) fn check_output_aimed(mesh: &TetMesh, aim: Aim) -> Result<(), Error> {
     let run = || -> Result<(), String> {
-        check_lengths(mesh)?;
-        check_tets(mesh)?;
-        let faces = FaceIndex::new(mesh)?;
+        let (faces, stars) = check_complex(mesh, aim)?;
         if let Some((i, f)) = mesh.faces.iter().enumerate().find(|(_, f)| {
             f.iter().any(|&v| v as usize >= mesh.vertices.len()) || !faces.contains(**f)
         }) {
@@ -43,9 +50,43 @@ pub(crate) fn check_output(mesh: &TetMesh) -> Result<(), Error> {
                 "subface {i} {f:?} is not a face of any tetrahedron"
             ));
         }
-        check_edge_winding(mesh)
+        check_edge_winding(mesh, &stars)
     };
     run().map_err(|m| Error::Internal(format!("output check failed: {m}")))
+}
+
+/// The structure both checks share, in an order that names the most telling fault first:
+/// lengths and index ranges, orientation, neighbours, the vertex stars ([`Stars`]), and the
+/// faces in more than two tets. The faces are indexed only where the stars do not already
+/// rule that out, and wherever a subface could be.
+fn check_complex(m: &TetMesh, aim: Aim) -> Result<(FaceIndex, Stars), String> {
+    check_lengths(m)?;
+    for (t, tv) in m.tets.iter().enumerate() {
+        tick_pass(m, 0, t)?;
+        if tv.iter().any(|&v| v as usize >= m.vertices.len()) {
+            return Err(format!("tet {t} {tv:?} has a vertex index out of range"));
+        }
+    }
+    let mut stars = Stars::count(m, aim)?;
+    check_neighbours(m)?;
+    stars.decide()?;
+    // A face with a vertex of `Star::Once` lies in exactly two tets or in one with an open
+    // side: a third tet would cover the directions near the face twice around that vertex.
+    let mut on_subface = vec![false; m.vertices.len()];
+    for &v in m.faces.iter().flatten() {
+        if let Some(x) = on_subface.get_mut(v as usize) {
+            *x = true;
+        }
+    }
+    // One byte per vertex, read in place of `stars.of` (a random read through `local`) for
+    // the four faces of every tet.
+    let once: Vec<bool> = (0..m.vertices.len() as u32)
+        .map(|v| stars.of(v) == Star::Once)
+        .collect();
+    let faces = FaceIndex::new(m, |f| {
+        !f.iter().any(|&v| once[v as usize]) || f.iter().all(|&v| on_subface[v as usize])
+    })?;
+    Ok((faces, stars))
 }
 
 /// Every Steiner point made inside a facet lies within one floating-point step of the
@@ -88,14 +129,20 @@ fn tick_pass(m: &TetMesh, pass: usize, t: usize) -> Result<(), String> {
 }
 
 /// The passes over the tets a full check makes (for the progress estimate).
-const PASSES: usize = 6;
+const PASSES: usize = 7;
 
 /// Around every edge, the tets sharing it (walked through neighbours) turn exactly once when
 /// they close up, and less than once when the fan is open. Measured exactly: with `c0` the
 /// first apex, the signs of `orient3d(a, b, c0, c)` along the fan change at most once, and no
 /// later apex lies on `c0`'s half-plane (that would be a second turn). Each fan is walked once
 /// (a bit per tet edge marks it done), so the check costs O(1) per tet edge.
-fn check_edge_winding(m: &TetMesh) -> Result<(), String> {
+///
+/// Most fans need no walk: [`Stars`] first proves, vertex by vertex, that the tets
+/// around an interior vertex cover the directions around it exactly once, which makes its
+/// star an embedded ball and every edge at it turn exactly once. Only edges with no such
+/// vertex (on the boundary, or where the proof met a tie) are walked; the walk reads two tet
+/// records per step, a dependent cache miss each, where the proof streams through the tets.
+fn check_edge_winding(m: &TetMesh, stars: &Stars) -> Result<(), String> {
     // Local edge number of the pair of positions (i, j), i < j.
     const EDGE_BIT: [[u8; 4]; 4] = [[0, 1, 2, 4], [1, 0, 8, 16], [2, 8, 0, 32], [4, 16, 32, 0]];
     const EDGES: [[usize; 4]; 6] = [
@@ -106,21 +153,13 @@ fn check_edge_winding(m: &TetMesh) -> Result<(), String> {
         [1, 3, 2, 0],
         [2, 3, 0, 1],
     ];
-    // Vertices renumbered in the order the tets first list them, coordinates copied in that
-    // order: the walks below read vertices as the tets list them, and tets made in the
-    // kernel's spatial insertion order would otherwise hit vertices numbered in the input's
-    // order (random for a scattered point set), a cache miss each.
-    let nv = m.vertices.len();
-    let mut local = vec![NONE; nv];
-    let mut coords: Vec<[f64; 3]> = Vec::with_capacity(nv);
-    for tv in &m.tets {
-        for &v in tv {
-            if local[v as usize] == NONE {
-                local[v as usize] = coords.len() as u32;
-                coords.push(m.vertices[v as usize]);
-            }
-        }
-    }
+    let Stars {
+        local,
+        coords,
+        tets_at,
+        star,
+        ..
+    } = stars;
     let p = |v: u32| coords[local[v as usize] as usize];
     let mut done = vec![0u8; m.tets.len()];
     let mark = |t: u32, a: u32, b: u32, done: &mut [u8]| {
@@ -144,31 +183,25 @@ fn check_edge_winding(m: &TetMesh) -> Result<(), String> {
         Some((n, apex))
     };
     let budget = m.tets.len() + 1;
-    // Per vertex (local numbering): edges (fans of tets around an edge), tets, and faces with
-    // no tet behind.
-    let (mut edges_at, mut tets_at, mut open_at) = (vec![0u32; nv], vec![0u32; nv], vec![0u32; nv]);
+    // Per vertex (local numbering): edges walked (fans of tets around an edge).
+    let mut edges_at = vec![0u32; coords.len()];
     let at = |v: u32| local[v as usize] as usize;
-    for (t, tv) in m.tets.iter().enumerate() {
-        for (i, &v) in tv.iter().enumerate() {
-            tets_at[at(v)] += 1;
-            if m.neighbors[t][i] == NONE {
-                for (j, &w) in tv.iter().enumerate() {
-                    if j != i {
-                        open_at[at(w)] += 1;
-                    }
-                }
-            }
-        }
-    }
     let (mut apexes, mut back): (Vec<u32>, Vec<u32>) = (Vec::new(), Vec::new());
     for t0 in 0..m.tets.len() as u32 {
-        tick_pass(m, 4, t0 as usize)?;
+        tick_pass(m, 5, t0 as usize)?;
         let tv = m.tets[t0 as usize];
         for (k, e) in EDGES.iter().enumerate() {
             if done[t0 as usize] & (1 << k) != 0 {
                 continue;
             }
             let [a, b, c, d] = e.map(|k| tv[k]);
+            // Every edge at a proven vertex turns exactly once. Edges at an unproven interior
+            // vertex are all walked: the Euler count below needs them.
+            let (sa, sb) = (star[at(a)], star[at(b)]);
+            if (sa == Star::Once || sb == Star::Once) && sa != Star::Unknown && sb != Star::Unknown
+            {
+                continue;
+            }
             mark(t0, a, b, &mut done);
             edges_at[at(a)] += 1;
             edges_at[at(b)] += 1;
@@ -220,8 +253,8 @@ fn check_edge_winding(m: &TetMesh) -> Result<(), String> {
     // With every edge turning exactly once, the link then covers the sphere of directions
     // exactly once; tets wrapping twice around a vertex give two spheres (4), which the
     // edges alone do not show.
-    if let Some(i) = (0..coords.len())
-        .find(|&i| tets_at[i] > 0 && open_at[i] == 0 && 2 * edges_at[i] != tets_at[i] + 4)
+    if let Some(i) =
+        (0..coords.len()).find(|&i| star[i] == Star::Unknown && 2 * edges_at[i] != tets_at[i] + 4)
     {
         let v = local.iter().position(|&l| l as usize == i).unwrap_or(i);
         return Err(format!(
@@ -230,6 +263,180 @@ fn check_edge_winding(m: &TetMesh) -> Result<(), String> {
         ));
     }
     Ok(())
+}
+
+/// What [`Stars`] proved about the tets around a vertex.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Star {
+    /// A face through the vertex has no tet behind it: nothing to prove.
+    Open,
+    /// The tets around the vertex cover the directions around it exactly once.
+    Once,
+    /// The aimed direction lies on the plane of a face through the vertex (a tie): unproven.
+    Unknown,
+}
+
+/// Picks a vertex's aim point for [`Stars`] from the corners of the first tet listing it.
+pub(crate) type Aim = fn([[f64; 3]; 4]) -> [f64; 3];
+
+/// A point inside the tet with corners `c`, by weights 1, 2, 3, 5 (out of 11): away from every
+/// corner, and, unlike the centroid, off the planes through a corner that lattice-like meshes
+/// (points on a grid) are full of, so that [`Stars`] rarely meets a tie.
+pub(crate) fn aim_into(c: [[f64; 3]; 4]) -> [f64; 3] {
+    [0, 1, 2].map(|k| (c[0][k] + 2.0 * c[1][k] + 3.0 * c[2][k] + 5.0 * c[3][k]) / 11.0)
+}
+
+/// The vertices renumbered in the order the tets first list them (coordinates copied in that
+/// order), and what the tets around each one were proved to do.
+///
+/// The renumbering is for speed: the passes over the tets read vertices as the tets list them,
+/// and tets made in the kernel's spatial insertion order would otherwise hit vertices numbered
+/// in the input's order (random for a scattered point set), a cache miss each.
+///
+/// The proof, per vertex with no open face around it: count exactly the tets whose corner at
+/// the vertex contains the direction towards an aim point ([`aim_into`] of the first tet
+/// listing the vertex; any point other than the vertex would do). Around such a vertex every face through it has a tet on each side,
+/// linked as neighbours on opposite sides of it (checked by [`check_neighbours`]), and every
+/// tet is positively oriented: seen from the vertex, the faces opposite it are positively
+/// oriented triangles on the sphere of directions, glued in pairs along their sides, each
+/// pair on opposite sides of the shared arc. The number of triangles over a direction then
+/// stays the same as the direction crosses any arc (one triangle is left, its neighbour is
+/// entered), so it is the same for every direction off the arcs: one count decides it.
+/// Exactly one means the tets around the vertex fill a ball around it once, every edge at it
+/// turning exactly once and every face through it in exactly two tets; more (tets winding
+/// twice, two stars sharing the vertex, a face in three tets) is reported. A direction on an
+/// arc (a zero orientation where no sign is negative) leaves the vertex [`Star::Unknown`], for
+/// the edge walks to decide.
+struct Stars {
+    /// Local number of each vertex ([`NONE`] for a vertex in no tet).
+    local: Vec<u32>,
+    /// By local number: coordinates, tets, faces with no tet behind, tets whose corner holds
+    /// the aimed direction, and whether a tie left the count undecided.
+    coords: Vec<[f64; 3]>,
+    tets_at: Vec<u32>,
+    open_at: Vec<u32>,
+    count: Vec<u32>,
+    tie: Vec<bool>,
+    /// By local number, filled by [`Stars::decide`].
+    star: Vec<Star>,
+}
+
+impl Stars {
+    /// Renumbers the vertices, checks that every tet is positively oriented, and counts (one
+    /// pass over the tets; the counts mean something only once the neighbours are checked).
+    fn count(m: &TetMesh, aim: Aim) -> Result<Stars, String> {
+        let nv = m.vertices.len();
+        let mut local = vec![NONE; nv];
+        let mut coords: Vec<[f64; 3]> = Vec::with_capacity(nv);
+        let mut aims: Vec<[f64; 3]> = Vec::with_capacity(nv);
+        for tv in &m.tets {
+            for &v in tv {
+                if local[v as usize] == NONE {
+                    local[v as usize] = coords.len() as u32;
+                    coords.push(m.vertices[v as usize]);
+                    aims.push(aim(tv.map(|w| m.vertices[w as usize])));
+                }
+            }
+        }
+        let n = coords.len();
+        let (mut tets_at, mut open_at) = (vec![0u32; n], vec![0u32; n]);
+        for (t, tv) in m.tets.iter().enumerate() {
+            for (i, &v) in tv.iter().enumerate() {
+                let li = local[v as usize] as usize;
+                tets_at[li] += 1;
+                if m.neighbors[t][i] == NONE {
+                    for (j, &w) in tv.iter().enumerate() {
+                        if j != i {
+                            open_at[local[w as usize] as usize] += 1;
+                        }
+                    }
+                }
+            }
+        }
+        let (mut count, mut tie) = (vec![0u32; n], vec![false; n]);
+        for (t, tv) in m.tets.iter().enumerate() {
+            tick_pass(m, 1, t)?;
+            let l = tv.map(|v| local[v as usize] as usize);
+            let c = l.map(|i| coords[i]);
+            if orient3d(c[0], c[1], c[2], c[3]) >= 0.0 {
+                return Err(format!(
+                    "tet {t} {tv:?} is not positively oriented (flat or inverted)"
+                ));
+            }
+            for (i, &li) in l.iter().enumerate() {
+                if open_at[li] != 0 || tie[li] {
+                    continue;
+                }
+                let r = aims[li];
+                // `FACE[j]` lists face j outward: the tet lies where orient3d(face, x) > 0,
+                // and its corner at i is bounded by the three faces through i (all but i).
+                let (mut inside, mut zero) = (true, false);
+                for (j, f) in FACE.iter().enumerate() {
+                    if j == i {
+                        continue;
+                    }
+                    let s = orient3d(c[f[0]], c[f[1]], c[f[2]], r);
+                    if s < 0.0 {
+                        inside = false;
+                        break;
+                    }
+                    zero |= s == 0.0;
+                }
+                if inside {
+                    if zero {
+                        tie[li] = true;
+                    } else {
+                        count[li] += 1;
+                    }
+                }
+            }
+        }
+        Ok(Stars {
+            local,
+            coords,
+            tets_at,
+            open_at,
+            count,
+            tie,
+            star: Vec::new(),
+        })
+    }
+
+    /// Turns the counts into [`Star`]s; an error names a vertex whose tets cover the
+    /// directions around it more than once. Call only once the neighbours are checked.
+    fn decide(&mut self) -> Result<(), String> {
+        let mut star = Vec::with_capacity(self.coords.len());
+        for i in 0..self.coords.len() {
+            star.push(if self.open_at[i] != 0 {
+                Star::Open
+            } else if self.tie[i] {
+                Star::Unknown
+            } else if self.count[i] == 1 {
+                Star::Once
+            } else {
+                let v = self
+                    .local
+                    .iter()
+                    .position(|&l| l as usize == i)
+                    .unwrap_or(i);
+                return Err(format!(
+                    "the tets around vertex {v} do not wind around it exactly once (they \
+                     cover a direction {} times)",
+                    self.count[i]
+                ));
+            });
+        }
+        self.star = star;
+        Ok(())
+    }
+
+    /// What was proved about vertex `v`'s star (a vertex in no tet is [`Star::Open`]).
+    fn of(&self, v: u32) -> Star {
+        match self.local.get(v as usize) {
+            Some(&l) if l != NONE => self.star[l as usize],
+            _ => Star::Open,
+        }
+    }
 }
 
 /// See [`check_edge_winding`]: `apexes` in turning order around the line a-b.
@@ -272,9 +479,7 @@ fn turns_once(
 }
 
 fn check_mesh(m: &TetMesh) -> Result<(), String> {
-    check_lengths(m)?;
-    check_tets(m)?;
-    let faces = FaceIndex::new(m)?;
+    let (faces, stars) = check_complex(m, aim_into)?;
     for (i, f) in m.faces.iter().enumerate() {
         if f.iter().any(|&v| v as usize >= m.vertices.len()) {
             return Err(format!("subface {i} has a vertex index out of range"));
@@ -295,7 +500,7 @@ fn check_mesh(m: &TetMesh) -> Result<(), String> {
             }
         }
     }
-    check_edge_winding(m)?;
+    check_edge_winding(m, &stars)?;
     if m.optimized {
         // Flips and smoothing give up the Delaunay property (`TetMesh::optimized`); what they
         // must keep is checked instead: every subsegment is still an edge of the mesh.
@@ -312,7 +517,7 @@ fn check_mesh(m: &TetMesh) -> Result<(), String> {
 fn check_subsegments(m: &TetMesh) -> Result<(), String> {
     let mut edges: crate::hash::FastSet<[u32; 2]> = crate::hash::FastSet::default();
     for (t, tv) in m.tets.iter().enumerate() {
-        tick_pass(m, 5, t)?;
+        tick_pass(m, 6, t)?;
         for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
             edges.insert([tv[i].min(tv[j]), tv[i].max(tv[j])]);
         }
@@ -365,24 +570,12 @@ fn check_lengths(m: &TetMesh) -> Result<(), String> {
     Ok(())
 }
 
-/// Orientation of every tet, and mutual, geometrically consistent neighbours.
-fn check_tets(m: &TetMesh) -> Result<(), String> {
-    let (nv, nt) = (m.vertices.len(), m.tets.len());
-    let p = |v: u32| m.vertices[v as usize];
+/// Mutual, geometrically consistent neighbours (vertex indices already checked in range,
+/// every tet positively oriented).
+fn check_neighbours(m: &TetMesh) -> Result<(), String> {
+    let nt = m.tets.len();
     for (t, tv) in m.tets.iter().enumerate() {
-        tick_pass(m, 0, t)?;
-        if tv.iter().any(|&v| v as usize >= nv) {
-            return Err(format!("tet {t} {tv:?} has a vertex index out of range"));
-        }
-        let [a, b, c, d] = tv.map(p);
-        if orient3d(a, b, c, d) >= 0.0 {
-            return Err(format!(
-                "tet {t} {tv:?} is not positively oriented (flat or inverted)"
-            ));
-        }
-    }
-    for (t, tv) in m.tets.iter().enumerate() {
-        tick_pass(m, 1, t)?;
+        tick_pass(m, 2, t)?;
         #[allow(clippy::needless_range_loop)] // i indexes the neighbours and FACE alike
         for i in 0..4 {
             let n = m.neighbors[t][i];
@@ -410,7 +603,7 @@ fn check_tets(m: &TetMesh) -> Result<(), String> {
                 ));
             }
             // `FACE[i]` lists the face outward for its tet: orient3d(face, own apex) > 0 for a
-            // positively oriented tet (checked exactly above). So n's apex lies strictly on the
+            // positively oriented tet (checked exactly by `Stars::count`). So n's apex lies strictly on the
             // other side of the face exactly when n lists the face in the opposite cyclic
             // order (orient3d changes sign with an odd permutation): a combinatorial test, no
             // coordinates read.
@@ -424,8 +617,9 @@ fn check_tets(m: &TetMesh) -> Result<(), String> {
     Ok(())
 }
 
-/// Every distinct face of the mesh, grouped by smallest vertex (counting sort), each group
-/// sorted: detects faces in more than two tets and answers "is this a face" in O(log).
+/// Every distinct face of the mesh that the caller wants indexed, grouped by smallest vertex
+/// (counting sort), each group sorted: detects such faces in more than two tets and answers
+/// "is this a face" in O(log) for them.
 struct FaceIndex {
     start: Vec<u32>,
     keys: Vec<u64>,
@@ -435,11 +629,11 @@ impl FaceIndex {
     /// Records each face once (interior faces from the tet with the smaller index) and fails
     /// if a face is recorded twice, i.e. it lies in more than two tets or in two tets that are
     /// not linked as neighbours.
-    fn new(m: &TetMesh) -> Result<FaceIndex, String> {
+    fn new(m: &TetMesh, wanted: impl Fn([u32; 3]) -> bool) -> Result<FaceIndex, String> {
         let nv = m.vertices.len();
         let recorded = |t: usize, i: usize| {
             let n = m.neighbors[t][i];
-            n == NONE || (t as u32) < n
+            (n == NONE || (t as u32) < n) && wanted(FACE[i].map(|k| m.tets[t][k]))
         };
         let sorted = |t: usize, i: usize| {
             let mut f = FACE[i].map(|k| m.tets[t][k]);
@@ -448,7 +642,7 @@ impl FaceIndex {
         };
         let mut start = vec![0u32; nv + 1];
         for t in 0..m.tets.len() {
-            tick_pass(m, 2, t)?;
+            tick_pass(m, 3, t)?;
             for i in 0..4 {
                 if recorded(t, i) {
                     start[sorted(t, i)[0] as usize + 1] += 1;
@@ -461,7 +655,7 @@ impl FaceIndex {
         let mut fill = start.clone();
         let mut keys = vec![0u64; start[nv] as usize];
         for t in 0..m.tets.len() {
-            tick_pass(m, 3, t)?;
+            tick_pass(m, 4, t)?;
             for i in 0..4 {
                 if recorded(t, i) {
                     let f = sorted(t, i);
@@ -473,7 +667,7 @@ impl FaceIndex {
         }
         drop(fill);
         for v in 0..nv {
-            tick_pass(m, 3, m.tets.len())?;
+            tick_pass(m, 4, m.tets.len())?;
             let group = &mut keys[start[v] as usize..start[v + 1] as usize];
             group.sort_unstable();
             if let Some(w) = group.windows(2).find(|w| w[0] == w[1]) {
@@ -635,7 +829,7 @@ fn check_empty_spheres(m: &TetMesh) -> Result<(), String> {
     let grid = Grid3::new(&m.vertices);
     let p = |v: u32| m.vertices[v as usize];
     for (t, tv) in m.tets.iter().enumerate() {
-        tick_pass(m, 5, t)?;
+        tick_pass(m, 6, t)?;
         let c = tv.map(p);
         let [a, b, cc, d] = c;
         let query = sphere_query(c);

@@ -156,9 +156,8 @@ fn check_edge_winding(m: &TetMesh, stars: &Stars) -> Result<(), String> {
     let Stars {
         local,
         coords,
-        tets_at,
+        tally,
         star,
-        ..
     } = stars;
     let p = |v: u32| coords[local[v as usize] as usize];
     let mut done = vec![0u8; m.tets.len()];
@@ -253,13 +252,13 @@ fn check_edge_winding(m: &TetMesh, stars: &Stars) -> Result<(), String> {
     // With every edge turning exactly once, the link then covers the sphere of directions
     // exactly once; tets wrapping twice around a vertex give two spheres (4), which the
     // edges alone do not show.
-    if let Some(i) =
-        (0..coords.len()).find(|&i| star[i] == Star::Unknown && 2 * edges_at[i] != tets_at[i] + 4)
+    if let Some(i) = (0..coords.len())
+        .find(|&i| star[i] == Star::Unknown && 2 * edges_at[i] != tally[i].tets + 4)
     {
         let v = local.iter().position(|&l| l as usize == i).unwrap_or(i);
         return Err(format!(
             "the tets around vertex {v} do not wind around it exactly once ({} tets, {} edges)",
-            tets_at[i], edges_at[i]
+            tally[i].tets, edges_at[i]
         ));
     }
     Ok(())
@@ -310,15 +309,22 @@ pub(crate) fn aim_into(c: [[f64; 3]; 4]) -> [f64; 3] {
 struct Stars {
     /// Local number of each vertex ([`NONE`] for a vertex in no tet).
     local: Vec<u32>,
-    /// By local number: coordinates, tets, faces with no tet behind, tets whose corner holds
-    /// the aimed direction, and whether a tie left the count undecided.
+    /// By local number: coordinates, and what the tets around the vertex showed.
     coords: Vec<[f64; 3]>,
-    tets_at: Vec<u32>,
-    open_at: Vec<u32>,
-    count: Vec<u32>,
-    tie: Vec<bool>,
+    tally: Vec<Tally>,
     /// By local number, filled by [`Stars::decide`].
     star: Vec<Star>,
+}
+
+/// Per vertex, side by side so that one read serves a corner: its tets, its faces with no tet
+/// behind, the tets whose corner at it holds the aimed direction, and whether a tie left that
+/// count undecided.
+#[derive(Clone, Copy, Default)]
+struct Tally {
+    tets: u32,
+    open: u32,
+    count: u32,
+    tie: bool,
 }
 
 impl Stars {
@@ -329,6 +335,7 @@ impl Stars {
         let mut local = vec![NONE; nv];
         let mut coords: Vec<[f64; 3]> = Vec::with_capacity(nv);
         let mut aims: Vec<[f64; 3]> = Vec::with_capacity(nv);
+        let mut tally: Vec<Tally> = Vec::with_capacity(nv);
         for tv in &m.tets {
             for &v in tv {
                 if local[v as usize] == NONE {
@@ -338,22 +345,8 @@ impl Stars {
                 }
             }
         }
-        let n = coords.len();
-        let (mut tets_at, mut open_at) = (vec![0u32; n], vec![0u32; n]);
-        for (t, tv) in m.tets.iter().enumerate() {
-            for (i, &v) in tv.iter().enumerate() {
-                let li = local[v as usize] as usize;
-                tets_at[li] += 1;
-                if m.neighbors[t][i] == NONE {
-                    for (j, &w) in tv.iter().enumerate() {
-                        if j != i {
-                            open_at[local[w as usize] as usize] += 1;
-                        }
-                    }
-                }
-            }
-        }
-        let (mut count, mut tie) = (vec![0u32; n], vec![false; n]);
+        tally.resize(coords.len(), Tally::default());
+        // Open vertices are counted too, and sorted out by `decide`.
         for (t, tv) in m.tets.iter().enumerate() {
             tick_pass(m, 1, t)?;
             let l = tv.map(|v| local[v as usize] as usize);
@@ -364,7 +357,17 @@ impl Stars {
                 ));
             }
             for (i, &li) in l.iter().enumerate() {
-                if open_at[li] != 0 || tie[li] {
+                tally[li].tets += 1;
+                if m.neighbors[t][i] == NONE {
+                    for (j, &lj) in l.iter().enumerate() {
+                        if j != i {
+                            tally[lj].open += 1;
+                        }
+                    }
+                }
+            }
+            for (i, &li) in l.iter().enumerate() {
+                if tally[li].tie {
                     continue;
                 }
                 let r = aims[li];
@@ -384,9 +387,9 @@ impl Stars {
                 }
                 if inside {
                     if zero {
-                        tie[li] = true;
+                        tally[li].tie = true;
                     } else {
-                        count[li] += 1;
+                        tally[li].count += 1;
                     }
                 }
             }
@@ -394,10 +397,7 @@ impl Stars {
         Ok(Stars {
             local,
             coords,
-            tets_at,
-            open_at,
-            count,
-            tie,
+            tally,
             star: Vec::new(),
         })
     }
@@ -406,12 +406,12 @@ impl Stars {
     /// directions around it more than once. Call only once the neighbours are checked.
     fn decide(&mut self) -> Result<(), String> {
         let mut star = Vec::with_capacity(self.coords.len());
-        for i in 0..self.coords.len() {
-            star.push(if self.open_at[i] != 0 {
+        for (i, x) in self.tally.iter().enumerate() {
+            star.push(if x.open != 0 {
                 Star::Open
-            } else if self.tie[i] {
+            } else if x.tie {
                 Star::Unknown
-            } else if self.count[i] == 1 {
+            } else if x.count == 1 {
                 Star::Once
             } else {
                 let v = self
@@ -422,7 +422,7 @@ impl Stars {
                 return Err(format!(
                     "the tets around vertex {v} do not wind around it exactly once (they \
                      cover a direction {} times)",
-                    self.count[i]
+                    x.count
                 ));
             });
         }

@@ -39,6 +39,7 @@ pub mod mesh3d;
 pub mod predicates;
 pub mod progress;
 pub mod switches;
+pub mod threads;
 
 pub use error::{Error, InputError};
 

@@ -1031,9 +1031,9 @@ fn validate_catches_tets_winding_twice_around_a_vertex() {
     // The same with every vertex's aimed direction on a face of its first tet, so that no
     // star is proved by counting: the edge walks and the Euler count must catch it.
     let tie = |c: [[f64; 3]; 4]| [0, 1, 2].map(|k| (c[1][k] + c[2][k]) / 2.0);
-    let aimed = crate::mesh3d::validate::check_output_aimed;
-    aimed(&mesh(tets[..8].to_vec(), neighbors[..8].to_vec()), tie).unwrap();
-    match aimed(&mesh(tets, neighbors), tie) {
+    let aimed = |m: &TetMesh| crate::mesh3d::validate::check_output_with(m, tie, 1);
+    aimed(&mesh(tets[..8].to_vec(), neighbors[..8].to_vec())).unwrap();
+    match aimed(&mesh(tets, neighbors)) {
         Err(Error::Internal(s)) => assert!(
             s.contains("around vertex 0 do not wind around it exactly once (16 tets, 12 edges)"),
             "{s}"
@@ -1057,7 +1057,47 @@ fn output_check_passes_valid_meshes_with_and_without_ties() {
         let m = delaunay3d(&pts).unwrap();
         crate::mesh3d::validate::check_output(&m).unwrap();
         for aim in [tie as crate::mesh3d::validate::Aim, centroid] {
-            crate::mesh3d::validate::check_output_aimed(&m, aim).unwrap();
+            crate::mesh3d::validate::check_output_with(&m, aim, 1).unwrap();
+        }
+    }
+}
+
+/// The output check splits its passes over threads; what it reports must not depend on how
+/// many: a valid mesh passes, and with faults in both halves of the tets the first one (in tet
+/// order) is named for every thread count.
+#[test]
+fn output_check_reports_the_same_for_any_thread_count() {
+    use crate::mesh3d::validate::{aim_into, check_output_with};
+    let m = delaunay3d(&random_points(40_000, 3)).unwrap();
+    assert!(
+        m.tets.len() > 4 << 16,
+        "{} tets: too few for four chunks",
+        m.tets.len()
+    );
+    for threads in [1, 2, 3, 4] {
+        check_output_with(&m, aim_into, threads).unwrap();
+    }
+    let n = m.tets.len();
+    let message = |m: &TetMesh, threads| match check_output_with(m, aim_into, threads) {
+        Err(Error::Internal(s)) => s,
+        other => panic!("fault not caught with {threads} threads: {other:?}"),
+    };
+    // Inverted tets (the counting pass) and a broken link (the neighbour pass).
+    let mut bad = m.clone();
+    bad.tets[n / 2].swap(0, 1);
+    bad.tets[n - 1].swap(0, 1);
+    let mut unlinked = m.clone();
+    let (t, i) = (3 * n / 4..n)
+        .flat_map(|t| (0..4).map(move |i| (t, i)))
+        .find(|&(t, i)| m.neighbors[t][i] != NONE && (m.neighbors[t][i] as usize) > t)
+        .unwrap();
+    unlinked.neighbors[t][i] = unlinked.neighbors[t][(i + 1) % 4];
+    let first = message(&bad, 1);
+    assert!(first.contains(&format!("tet {} ", n / 2)), "{first}");
+    for broken in [bad, unlinked] {
+        let one = message(&broken, 1);
+        for threads in [2, 3, 4] {
+            assert_eq!(message(&broken, threads), one);
         }
     }
 }

@@ -317,6 +317,7 @@ pub fn delaunay3d(points: &[[f64; 3]]) -> Result<TetMesh, Error> {
         return Ok(m);
     }
     catch_panic("", || {
+        crate::threads::count()?;
         let mesh = delaunay::delaunay(points)?;
         validate::check_output(&mesh)?;
         Ok(mesh)
@@ -325,6 +326,7 @@ pub fn delaunay3d(points: &[[f64; 3]]) -> Result<TetMesh, Error> {
 
 /// Rejects option values that cannot work.
 fn check_options(opts: &Options3) -> Result<(), Error> {
+    crate::threads::count()?;
     if let Some(r) = opts.radius_edge {
         if !(r.is_finite() && r >= 1.0) {
             return Err(Error::InvalidOption(format!(

@@ -36,13 +36,14 @@ pub fn validate_mesh(mesh: &TetMesh) -> Result<(), Error> {
 /// each pair of neighbours looks right. It leaves out the empty-sphere test of [`validate_mesh`] (`-C`), which costs about a third
 /// of a run and checks a property the kernel keeps by construction.
 pub(crate) fn check_output(mesh: &TetMesh) -> Result<(), Error> {
-    check_output_aimed(mesh, aim_into)
+    check_output_with(mesh, aim_into, crate::threads::count().unwrap_or(1))
 }
 
-/// [`check_output`] with the aim points of [`Stars`] chosen by `aim` (tests force ties).
-pub(crate) fn check_output_aimed(mesh: &TetMesh, aim: Aim) -> Result<(), Error> {
+/// [`check_output`] with the aim points of [`Stars`] chosen by `aim` (tests force ties) and
+/// the passes over the tets split over `threads` threads.
+pub(crate) fn check_output_with(mesh: &TetMesh, aim: Aim, threads: usize) -> Result<(), Error> {
     let run = || -> Result<(), String> {
-        let (faces, stars) = check_complex(mesh, aim)?;
+        let (faces, stars) = check_complex(mesh, aim, threads)?;
         if let Some((i, f)) = mesh.faces.iter().enumerate().find(|(_, f)| {
             f.iter().any(|&v| v as usize >= mesh.vertices.len()) || !faces.contains(**f)
         }) {
@@ -59,7 +60,7 @@ pub(crate) fn check_output_aimed(mesh: &TetMesh, aim: Aim) -> Result<(), Error> 
 /// lengths and index ranges, orientation, neighbours, the vertex stars ([`Stars`]), and the
 /// faces in more than two tets. The faces are indexed only where the stars do not already
 /// rule that out, and wherever a subface could be.
-fn check_complex(m: &TetMesh, aim: Aim) -> Result<(FaceIndex, Stars), String> {
+fn check_complex(m: &TetMesh, aim: Aim, threads: usize) -> Result<(FaceIndex, Stars), String> {
     check_lengths(m)?;
     for (t, tv) in m.tets.iter().enumerate() {
         tick_pass(m, 0, t)?;
@@ -67,8 +68,8 @@ fn check_complex(m: &TetMesh, aim: Aim) -> Result<(FaceIndex, Stars), String> {
             return Err(format!("tet {t} {tv:?} has a vertex index out of range"));
         }
     }
-    let mut stars = Stars::count(m, aim)?;
-    check_neighbours(m)?;
+    let mut stars = Stars::count(m, aim, threads)?;
+    check_neighbours(m, threads)?;
     stars.decide()?;
     // A face with a vertex of `Star::Once` lies in exactly two tets or in one with an open
     // side: a third tet would cover the directions near the face twice around that vertex.
@@ -330,32 +331,23 @@ struct Tally {
 impl Stars {
     /// Renumbers the vertices, checks that every tet is positively oriented, and counts (one
     /// pass over the tets; the counts mean something only once the neighbours are checked).
-    fn count(m: &TetMesh, aim: Aim) -> Result<Stars, String> {
+    fn count(m: &TetMesh, aim: Aim, threads: usize) -> Result<Stars, String> {
         let nv = m.vertices.len();
         let mut local = vec![NONE; nv];
         let mut coords: Vec<[f64; 3]> = Vec::with_capacity(nv);
         let mut aims: Vec<[f64; 3]> = Vec::with_capacity(nv);
         let mut tally: Vec<Tally> = Vec::with_capacity(nv);
-        for tv in &m.tets {
-            for &v in tv {
-                if local[v as usize] == NONE {
-                    local[v as usize] = coords.len() as u32;
+        for (t, tv) in m.tets.iter().enumerate() {
+            let l = tv.map(|v| {
+                let x = &mut local[v as usize];
+                if *x == NONE {
+                    *x = coords.len() as u32;
                     coords.push(m.vertices[v as usize]);
                     aims.push(aim(tv.map(|w| m.vertices[w as usize])));
+                    tally.push(Tally::default());
                 }
-            }
-        }
-        tally.resize(coords.len(), Tally::default());
-        // Open vertices are counted too, and sorted out by `decide`.
-        for (t, tv) in m.tets.iter().enumerate() {
-            tick_pass(m, 1, t)?;
-            let l = tv.map(|v| local[v as usize] as usize);
-            let c = l.map(|i| coords[i]);
-            if orient3d(c[0], c[1], c[2], c[3]) >= 0.0 {
-                return Err(format!(
-                    "tet {t} {tv:?} is not positively oriented (flat or inverted)"
-                ));
-            }
+                *x as usize
+            });
             for (i, &li) in l.iter().enumerate() {
                 tally[li].tets += 1;
                 if m.neighbors[t][i] == NONE {
@@ -366,32 +358,64 @@ impl Stars {
                     }
                 }
             }
-            for (i, &li) in l.iter().enumerate() {
-                if tally[li].tie {
-                    continue;
+        }
+        // The orientations and the counts, in chunks of tets on the run's threads. Each chunk
+        // keeps a byte per vertex: the count (saturating) and a tie bit. Open vertices are
+        // counted too, and sorted out by `decide`.
+        const TIE: u8 = 0x80;
+        let parts = crate::threads::chunks(m.tets.len(), threads, 1 << 16, |range, stop| {
+            let first = range.start == 0;
+            let mut seen = vec![0u8; coords.len()];
+            for t in range {
+                if first {
+                    tick_pass(m, 1, (t * threads).min(m.tets.len()))?;
+                } else if crate::threads::stopped(t, stop) {
+                    break;
                 }
-                let r = aims[li];
-                // `FACE[j]` lists face j outward: the tet lies where orient3d(face, x) > 0,
-                // and its corner at i is bounded by the three faces through i (all but i).
-                let (mut inside, mut zero) = (true, false);
-                for (j, f) in FACE.iter().enumerate() {
-                    if j == i {
+                let tv = m.tets[t];
+                let l = tv.map(|v| local[v as usize] as usize);
+                let c = l.map(|i| coords[i]);
+                if orient3d(c[0], c[1], c[2], c[3]) >= 0.0 {
+                    return Err(format!(
+                        "tet {t} {tv:?} is not positively oriented (flat or inverted)"
+                    ));
+                }
+                for (i, &li) in l.iter().enumerate() {
+                    if seen[li] & TIE != 0 {
                         continue;
                     }
-                    let s = orient3d(c[f[0]], c[f[1]], c[f[2]], r);
-                    if s < 0.0 {
-                        inside = false;
-                        break;
+                    let r = aims[li];
+                    // `FACE[j]` lists face j outward: the tet lies where orient3d(face, x) > 0,
+                    // and its corner at i is bounded by the three faces through i (all but i).
+                    let (mut inside, mut zero) = (true, false);
+                    for (j, f) in FACE.iter().enumerate() {
+                        if j == i {
+                            continue;
+                        }
+                        let s = orient3d(c[f[0]], c[f[1]], c[f[2]], r);
+                        if s < 0.0 {
+                            inside = false;
+                            break;
+                        }
+                        zero |= s == 0.0;
                     }
-                    zero |= s == 0.0;
-                }
-                if inside {
-                    if zero {
-                        tally[li].tie = true;
-                    } else {
-                        tally[li].count += 1;
+                    if inside {
+                        if zero {
+                            seen[li] |= TIE;
+                        } else if seen[li] < TIE - 1 {
+                            seen[li] += 1;
+                        }
                     }
                 }
+            }
+            Ok(seen)
+        });
+        // The first fault in tet order, whatever the thread count.
+        let parts = parts.into_iter().collect::<Result<Vec<_>, String>>()?;
+        for part in &parts {
+            for (x, &b) in tally.iter_mut().zip(part) {
+                x.count += u32::from(b & !TIE);
+                x.tie |= b & TIE != 0;
             }
         }
         Ok(Stars {
@@ -479,7 +503,7 @@ fn turns_once(
 }
 
 fn check_mesh(m: &TetMesh) -> Result<(), String> {
-    let (faces, stars) = check_complex(m, aim_into)?;
+    let (faces, stars) = check_complex(m, aim_into, crate::threads::count().unwrap_or(1))?;
     for (i, f) in m.faces.iter().enumerate() {
         if f.iter().any(|&v| v as usize >= m.vertices.len()) {
             return Err(format!("subface {i} has a vertex index out of range"));
@@ -572,46 +596,62 @@ fn check_lengths(m: &TetMesh) -> Result<(), String> {
 
 /// Mutual, geometrically consistent neighbours (vertex indices already checked in range,
 /// every tet positively oriented).
-fn check_neighbours(m: &TetMesh) -> Result<(), String> {
+fn check_neighbours(m: &TetMesh, threads: usize) -> Result<(), String> {
+    let parts = crate::threads::chunks(m.tets.len(), threads, 1 << 16, |range, stop| {
+        let first = range.start == 0;
+        for t in range {
+            if first {
+                tick_pass(m, 2, (t * threads).min(m.tets.len()))?;
+            } else if crate::threads::stopped(t, stop) {
+                break;
+            }
+            neighbours_of(m, t)?;
+        }
+        Ok(())
+    });
+    // The first fault in tet order, whatever the thread count.
+    parts.into_iter().collect()
+}
+
+/// [`check_neighbours`] for tet `t`.
+fn neighbours_of(m: &TetMesh, t: usize) -> Result<(), String> {
     let nt = m.tets.len();
-    for (t, tv) in m.tets.iter().enumerate() {
-        tick_pass(m, 2, t)?;
-        #[allow(clippy::needless_range_loop)] // i indexes the neighbours and FACE alike
-        for i in 0..4 {
-            let n = m.neighbors[t][i];
-            if n == NONE {
-                continue;
-            }
-            if n as usize >= nt {
-                return Err(format!("tet {t} has neighbour {n} out of range"));
-            }
-            let Some(j) = (0..4).find(|&j| m.neighbors[n as usize][j] == t as u32) else {
-                return Err(format!("tets {t} and {n} are not mutual neighbours"));
-            };
-            let face = FACE[i].map(|k| tv[k]);
-            let other = m.tets[n as usize];
-            let seen = FACE[j].map(|k| other[k]);
-            let Some(k) = seen.iter().position(|&v| v == face[0]) else {
-                return Err(format!(
-                    "tets {t} {tv:?} and {n} {other:?} are neighbours but do not share face {face:?}"
-                ));
-            };
-            let (next, prev) = (seen[(k + 1) % 3], seen[(k + 2) % 3]);
-            if !((next == face[1] && prev == face[2]) || (next == face[2] && prev == face[1])) {
-                return Err(format!(
-                    "tets {t} {tv:?} and {n} {other:?} are neighbours but do not share face {face:?}"
-                ));
-            }
-            // `FACE[i]` lists the face outward for its tet: orient3d(face, own apex) > 0 for a
-            // positively oriented tet (checked exactly by `Stars::count`). So n's apex lies strictly on the
-            // other side of the face exactly when n lists the face in the opposite cyclic
-            // order (orient3d changes sign with an odd permutation): a combinatorial test, no
-            // coordinates read.
-            if next == face[1] {
-                return Err(format!(
-                    "tets {t} and {n} lie on the same side of their shared face {face:?}"
-                ));
-            }
+    let tv = m.tets[t];
+    #[allow(clippy::needless_range_loop)] // i indexes the neighbours and FACE alike
+    for i in 0..4 {
+        let n = m.neighbors[t][i];
+        if n == NONE {
+            continue;
+        }
+        if n as usize >= nt {
+            return Err(format!("tet {t} has neighbour {n} out of range"));
+        }
+        let Some(j) = (0..4).find(|&j| m.neighbors[n as usize][j] == t as u32) else {
+            return Err(format!("tets {t} and {n} are not mutual neighbours"));
+        };
+        let face = FACE[i].map(|k| tv[k]);
+        let other = m.tets[n as usize];
+        let seen = FACE[j].map(|k| other[k]);
+        let Some(k) = seen.iter().position(|&v| v == face[0]) else {
+            return Err(format!(
+                "tets {t} {tv:?} and {n} {other:?} are neighbours but do not share face {face:?}"
+            ));
+        };
+        let (next, prev) = (seen[(k + 1) % 3], seen[(k + 2) % 3]);
+        if !((next == face[1] && prev == face[2]) || (next == face[2] && prev == face[1])) {
+            return Err(format!(
+                "tets {t} {tv:?} and {n} {other:?} are neighbours but do not share face {face:?}"
+            ));
+        }
+        // `FACE[i]` lists the face outward for its tet: orient3d(face, own apex) > 0 for a
+        // positively oriented tet (checked exactly by `Stars::count`). So n's apex lies
+        // strictly on the other side of the face exactly when n lists the face in the opposite cyclic
+        // order (orient3d changes sign with an odd permutation): a combinatorial test, no
+        // coordinates read.
+        if next == face[1] {
+            return Err(format!(
+                "tets {t} and {n} lie on the same side of their shared face {face:?}"
+            ));
         }
     }
     Ok(())

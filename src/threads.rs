@@ -1,0 +1,165 @@
+//! How many threads a run may use, and one way to use them: contiguous chunks of a range, each
+//! on its own scoped thread, results in chunk order (so a run's outcome never depends on the
+//! thread count or on which thread finishes first).
+//!
+//! The count comes from the environment variable `IDMESH_THREADS` (a positive integer), and
+//! defaults to all the cores the process may use. A host that runs one process per core (MPI)
+//! sets `IDMESH_THREADS=1`.
+
+use crate::error::Error;
+use std::ops::Range;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// The environment variable that sets the thread count.
+pub const THREADS_VAR: &str = "IDMESH_THREADS";
+
+/// The thread count: `IDMESH_THREADS` when set, else the cores available (1 if unknown). An
+/// unreadable value is an error naming it.
+pub fn count() -> Result<usize, Error> {
+    from_value(std::env::var(THREADS_VAR))
+}
+
+fn from_value(v: Result<String, std::env::VarError>) -> Result<usize, Error> {
+    let all = || {
+        std::thread::available_parallelism()
+            .map(|n| n.get())
+            .unwrap_or(1)
+    };
+    let bad = |s: &str| {
+        Error::InvalidOption(format!(
+            "{THREADS_VAR}={s}: expected a positive number of threads"
+        ))
+    };
+    match v {
+        Err(std::env::VarError::NotPresent) => Ok(all()),
+        Err(std::env::VarError::NotUnicode(s)) => Err(bad(&s.to_string_lossy())),
+        Ok(s) if s.trim().is_empty() => Ok(all()),
+        Ok(s) => match s.trim().parse::<usize>() {
+            Ok(n) if n >= 1 => Ok(n),
+            _ => Err(bad(&s)),
+        },
+    }
+}
+
+/// Splits `0..n` into at most `threads` contiguous chunks of at least `min_chunk` items and
+/// runs `work(chunk, stop)` on each, the first on the calling thread (the one whose progress
+/// callback and cancel are live) and the others on scoped threads. `stop` is raised when the
+/// first chunk's work returns `Err` (a cancel or a fault found early), so that the others can
+/// give up; they poll it. Results come back in chunk order. A panic on any thread is passed
+/// on to the caller once all have finished.
+pub(crate) fn chunks<R: Send, E: Send>(
+    n: usize,
+    threads: usize,
+    min_chunk: usize,
+    work: impl Fn(Range<usize>, &AtomicBool) -> Result<R, E> + Sync,
+) -> Vec<Result<R, E>> {
+    let k = threads.clamp(1, n.div_ceil(min_chunk.max(1)).max(1));
+    let bounds: Vec<Range<usize>> = (0..k).map(|i| i * n / k..(i + 1) * n / k).collect();
+    let stop = AtomicBool::new(false);
+    if k == 1 {
+        return vec![work(0..n, &stop)];
+    }
+    std::thread::scope(|s| {
+        let others: Vec<_> = bounds[1..]
+            .iter()
+            .map(|r| {
+                let (r, work, stop) = (r.clone(), &work, &stop);
+                s.spawn(move || work(r, stop))
+            })
+            .collect();
+        let first = work(bounds[0].clone(), &stop);
+        if first.is_err() {
+            stop.store(true, Ordering::Relaxed);
+        }
+        let mut out = vec![first];
+        let mut panic = None;
+        for h in others {
+            match h.join() {
+                Ok(r) => out.push(r),
+                Err(p) => panic = Some(p),
+            }
+        }
+        if let Some(p) = panic {
+            std::panic::resume_unwind(p);
+        }
+        out
+    })
+}
+
+/// Whether `stop` has been raised, read only at every 4096th item `i` (the polling of
+/// [`chunks`]' work).
+#[inline]
+pub(crate) fn stopped(i: usize, stop: &AtomicBool) -> bool {
+    i % 4096 == 0 && stop.load(Ordering::Relaxed)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_count_is_the_variable_or_all_cores_and_bad_values_are_named() {
+        use std::env::VarError;
+        let all = from_value(Err(VarError::NotPresent)).unwrap();
+        assert!(all >= 1);
+        assert_eq!(from_value(Ok(String::new())).unwrap(), all);
+        assert_eq!(from_value(Ok(" 3 ".into())).unwrap(), 3);
+        for bad in ["0", "-2", "two", "1.5"] {
+            match from_value(Ok(bad.into())) {
+                Err(Error::InvalidOption(m)) => assert!(m.contains(&format!("={bad}")), "{m}"),
+                other => panic!("{bad}: {other:?}"),
+            }
+        }
+    }
+
+    #[test]
+    fn chunks_cover_the_range_in_order_for_any_thread_count() {
+        for threads in [1, 2, 3, 7, 64] {
+            let out = chunks(1000, threads, 10, |r, _| Ok::<_, ()>(r));
+            assert!(out.len() <= threads.min(100));
+            let mut next = 0;
+            for r in out {
+                let r = r.unwrap();
+                assert_eq!(r.start, next);
+                next = r.end;
+            }
+            assert_eq!(next, 1000);
+        }
+        // Small ranges stay on one thread.
+        assert_eq!(chunks(5, 8, 10, |r, _| Ok::<_, ()>(r)).len(), 1);
+        assert_eq!(chunks(0, 8, 10, |r, _| Ok::<_, ()>(r)).len(), 1);
+    }
+
+    #[test]
+    fn an_error_in_the_first_chunk_stops_the_others() {
+        let out = chunks(1 << 20, 2, 1, |r, stop| {
+            if r.start == 0 {
+                return Err(());
+            }
+            // Wait (boundedly) for the stop the first chunk's error raises.
+            for i in 0..1_000_000_000usize {
+                if stopped(i * 4096, stop) {
+                    return Ok(true);
+                }
+                std::hint::spin_loop();
+            }
+            Ok(false)
+        });
+        assert_eq!(out.len(), 2);
+        assert!(out[0].is_err());
+        assert_eq!(out[1], Ok(true));
+    }
+
+    #[test]
+    fn a_panic_on_a_worker_reaches_the_caller() {
+        let r = std::panic::catch_unwind(|| {
+            chunks(100, 2, 1, |r, _| {
+                if r.start > 0 {
+                    panic!("worker");
+                }
+                Ok::<_, ()>(())
+            })
+        });
+        assert!(r.is_err());
+    }
+}

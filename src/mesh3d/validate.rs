@@ -73,19 +73,27 @@ fn check_complex(m: &TetMesh, aim: Aim, threads: usize) -> Result<(FaceIndex, St
     stars.decide()?;
     // A face with a vertex of `Star::Once` lies in exactly two tets or in one with an open
     // side: a third tet would cover the directions near the face twice around that vertex.
-    let mut on_subface = vec![false; m.vertices.len()];
+    // One byte per vertex (bit 0: `Star::Once`, bit 1: on a subface), read once per tet in
+    // place of `stars.of` (a random read through `local`) for every face.
+    const ONCE: u8 = 1;
+    const SUB: u8 = 2;
+    let mut flags: Vec<u8> = (0..m.vertices.len() as u32)
+        .map(|v| u8::from(stars.of(v) == Star::Once))
+        .collect();
     for &v in m.faces.iter().flatten() {
-        if let Some(x) = on_subface.get_mut(v as usize) {
-            *x = true;
+        if let Some(x) = flags.get_mut(v as usize) {
+            *x |= SUB;
         }
     }
-    // One byte per vertex, read in place of `stars.of` (a random read through `local`) for
-    // the four faces of every tet.
-    let once: Vec<bool> = (0..m.vertices.len() as u32)
-        .map(|v| stars.of(v) == Star::Once)
-        .collect();
-    let faces = FaceIndex::new(m, |f| {
-        !f.iter().any(|&v| once[v as usize]) || f.iter().all(|&v| on_subface[v as usize])
+    let faces = FaceIndex::new(m, |t| {
+        let f = m.tets[t].map(|v| flags[v as usize]);
+        let bits = |flag: u8| (0..4).fold(0u8, |b, k| b | (u8::from(f[k] & flag != 0) << k));
+        let (once, sub) = (bits(ONCE), bits(SUB));
+        (0..4).fold(0u8, |mask, i| {
+            let others = 0b1111 & !(1u8 << i);
+            let wanted = once & others == 0 || sub & others == others;
+            mask | (u8::from(wanted) << i)
+        })
     })?;
     Ok((faces, stars))
 }
@@ -190,14 +198,19 @@ fn check_edge_winding(m: &TetMesh, stars: &Stars) -> Result<(), String> {
     for t0 in 0..m.tets.len() as u32 {
         tick_pass(m, 5, t0 as usize)?;
         let tv = m.tets[t0 as usize];
+        // Every edge at a proven vertex turns exactly once. Edges at an unproven interior
+        // vertex are all walked: the Euler count below needs them. (A tet with three proven
+        // corners and no unproven one, most of them, has no edge to walk.)
+        let st = tv.map(|v| star[at(v)]);
+        if !st.contains(&Star::Unknown) && st.iter().filter(|&&x| x == Star::Once).count() >= 3 {
+            continue;
+        }
         for (k, e) in EDGES.iter().enumerate() {
             if done[t0 as usize] & (1 << k) != 0 {
                 continue;
             }
             let [a, b, c, d] = e.map(|k| tv[k]);
-            // Every edge at a proven vertex turns exactly once. Edges at an unproven interior
-            // vertex are all walked: the Euler count below needs them.
-            let (sa, sb) = (star[at(a)], star[at(b)]);
+            let (sa, sb) = (st[e[0]], st[e[1]]);
             if (sa == Star::Once || sb == Star::Once) && sa != Star::Unknown && sb != Star::Unknown
             {
                 continue;
@@ -657,7 +670,8 @@ fn neighbours_of(m: &TetMesh, t: usize) -> Result<(), String> {
     Ok(())
 }
 
-/// Every distinct face of the mesh that the caller wants indexed, grouped by smallest vertex
+/// Every distinct face of the mesh that the caller wants indexed (`wanted(t)`: a bit per face
+/// of tet `t`, bit i for the face opposite corner i), grouped by smallest vertex
 /// (counting sort), each group sorted: detects such faces in more than two tets and answers
 /// "is this a face" in O(log) for them.
 struct FaceIndex {
@@ -669,11 +683,11 @@ impl FaceIndex {
     /// Records each face once (interior faces from the tet with the smaller index) and fails
     /// if a face is recorded twice, i.e. it lies in more than two tets or in two tets that are
     /// not linked as neighbours.
-    fn new(m: &TetMesh, wanted: impl Fn([u32; 3]) -> bool) -> Result<FaceIndex, String> {
+    fn new(m: &TetMesh, wanted: impl Fn(usize) -> u8) -> Result<FaceIndex, String> {
         let nv = m.vertices.len();
-        let recorded = |t: usize, i: usize| {
+        let recorded = |t: usize, i: usize, mask: u8| {
             let n = m.neighbors[t][i];
-            (n == NONE || (t as u32) < n) && wanted(FACE[i].map(|k| m.tets[t][k]))
+            mask & (1 << i) != 0 && (n == NONE || (t as u32) < n)
         };
         let sorted = |t: usize, i: usize| {
             let mut f = FACE[i].map(|k| m.tets[t][k]);
@@ -683,8 +697,9 @@ impl FaceIndex {
         let mut start = vec![0u32; nv + 1];
         for t in 0..m.tets.len() {
             tick_pass(m, 3, t)?;
+            let mask = wanted(t);
             for i in 0..4 {
-                if recorded(t, i) {
+                if recorded(t, i, mask) {
                     start[sorted(t, i)[0] as usize + 1] += 1;
                 }
             }
@@ -696,8 +711,9 @@ impl FaceIndex {
         let mut keys = vec![0u64; start[nv] as usize];
         for t in 0..m.tets.len() {
             tick_pass(m, 4, t)?;
+            let mask = wanted(t);
             for i in 0..4 {
-                if recorded(t, i) {
+                if recorded(t, i, mask) {
                     let f = sorted(t, i);
                     let slot = &mut fill[f[0] as usize];
                     keys[*slot as usize] = ((f[1] as u64) << 32) | f[2] as u64;

@@ -19,6 +19,18 @@ pub fn count() -> Result<usize, Error> {
     from_value(std::env::var(THREADS_VAR))
 }
 
+/// The thread count of a run whose options ask for `asked` (`None`: [`count`]). Zero is an
+/// error.
+pub fn resolve(asked: Option<usize>) -> Result<usize, Error> {
+    match asked {
+        None => count(),
+        Some(0) => Err(Error::InvalidOption(
+            "threads must be at least 1 (leave it unset for IDMESH_THREADS or all cores)".into(),
+        )),
+        Some(n) => Ok(n),
+    }
+}
+
 fn from_value(v: Result<String, std::env::VarError>) -> Result<usize, Error> {
     let all = || {
         std::thread::available_parallelism()
@@ -110,6 +122,12 @@ mod tests {
                 other => panic!("{bad}: {other:?}"),
             }
         }
+    }
+
+    #[test]
+    fn an_explicit_count_wins_and_zero_is_refused() {
+        assert_eq!(resolve(Some(3)).unwrap(), 3);
+        assert!(matches!(resolve(Some(0)), Err(Error::InvalidOption(_))));
     }
 
     #[test]

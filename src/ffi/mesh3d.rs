@@ -110,6 +110,11 @@ pub struct idm_options3d {
     /// tetrahedra with a dihedral angle above it or below 180 minus it are worked on. Above 0
     /// and below 180, not NaN. Default 165.
     pub optimize_max_dihedral: f64,
+    /// Threads a run may use (so far for the exact check every run ends with; the mesh and
+    /// every message are the same for any count). 0: the environment variable
+    /// `IDMESH_THREADS`, else all cores. Default 0. Appended after 0.2.0: a caller's older
+    /// struct gets the default.
+    pub threads: usize,
 }
 
 /// Quality figures of the current mesh (see `idm_mesher3d_stats`).
@@ -257,6 +262,7 @@ unsafe impl SizedOptions for idm_options3d {
             optimize_max_dihedral: d
                 .optimize_max_dihedral
                 .unwrap_or(crate::mesh3d::DEFAULT_MAX_DIHEDRAL),
+            threads: d.threads.unwrap_or(0),
         }
     }
 }
@@ -529,6 +535,7 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
                 optimize_level,
                 optimize_scheme: Some(optimize_scheme),
                 optimize_max_dihedral: Some(o.optimize_max_dihedral),
+                threads: (o.threads != 0).then_some(o.threads),
             };
             Ok(())
         })
@@ -1956,6 +1963,28 @@ mod tests {
         let h = &m.get_mut().opts;
         assert_eq!(h.radius_edge, Some(2.0));
         assert!(!h.surface_input, "beyond the caller's struct");
+    }
+
+    #[test]
+    fn the_thread_count_maps_and_an_older_struct_gets_the_default() {
+        let mut o = options(0.0, 0.0);
+        assert_eq!(o.threads, 0, "default: IDMESH_THREADS or all cores");
+        let m = Handle::new();
+        load(&m, &cube());
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
+        assert_eq!(m.get().opts.threads, None);
+        o.threads = 2;
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
+        assert_eq!(m.get().opts.threads, Some(2));
+        assert_eq!(
+            unsafe { idm_mesher3d_refine(m.0) },
+            IDM_OK,
+            "{}",
+            last_error()
+        );
+        o.struct_size = std::mem::offset_of!(idm_options3d, threads);
+        assert_eq!(unsafe { idm_mesher3d_set_options(m.0, &o) }, IDM_OK);
+        assert_eq!(m.get().opts.threads, None, "beyond the caller's struct");
     }
 
     #[test]

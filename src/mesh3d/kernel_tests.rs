@@ -683,10 +683,10 @@ fn edge_fan(step: f64) -> TetMesh {
 fn validate_catches_tets_winding_twice_around_an_edge() {
     let once = edge_fan(72.0);
     once.validate().unwrap();
-    crate::mesh3d::validate::check_output(&once).unwrap();
+    crate::mesh3d::validate::check_output(&once, 2).unwrap();
     let twice = edge_fan(144.0);
     assert!(twice.validate().is_err());
-    match crate::mesh3d::validate::check_output(&twice) {
+    match crate::mesh3d::validate::check_output(&twice, 2) {
         Err(Error::Internal(s)) => assert!(s.contains("around edge [0, 1]"), "{s}"),
         other => panic!("overlap not caught: {other:?}"),
     }
@@ -1022,9 +1022,9 @@ fn validate_catches_tets_winding_twice_around_a_vertex() {
         ..TetMesh::default()
     };
     // One octahedron alone is fine (its unused second star's vertices are no tet's).
-    crate::mesh3d::validate::check_output(&mesh(tets[..8].to_vec(), neighbors[..8].to_vec()))
+    crate::mesh3d::validate::check_output(&mesh(tets[..8].to_vec(), neighbors[..8].to_vec()), 2)
         .unwrap();
-    match crate::mesh3d::validate::check_output(&mesh(tets.clone(), neighbors.clone())) {
+    match crate::mesh3d::validate::check_output(&mesh(tets.clone(), neighbors.clone()), 2) {
         Err(Error::Internal(s)) => assert!(s.contains("around vertex 0"), "{s}"),
         other => panic!("overlap not caught: {other:?}"),
     }
@@ -1055,7 +1055,7 @@ fn output_check_passes_valid_meshes_with_and_without_ties() {
         |c: [[f64; 3]; 4]| [0, 1, 2].map(|k| (c[0][k] + c[1][k] + c[2][k] + c[3][k]) / 4.0);
     for pts in [random_points(300, 7), grid] {
         let m = delaunay3d(&pts).unwrap();
-        crate::mesh3d::validate::check_output(&m).unwrap();
+        crate::mesh3d::validate::check_output(&m, 2).unwrap();
         for aim in [tie as crate::mesh3d::validate::Aim, centroid] {
             crate::mesh3d::validate::check_output_with(&m, aim, 1).unwrap();
         }

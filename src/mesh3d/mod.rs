@@ -145,6 +145,11 @@ pub struct Options3 {
     /// tetrahedra with a dihedral angle above it or below 180° minus it are worked on. Must be
     /// above 0 and below 180. `None`: [`DEFAULT_MAX_DIHEDRAL`] (165). Default: `None`.
     pub optimize_max_dihedral: Option<f64>,
+    /// Threads a run may use (so far for the exact check every 3D run ends with; the mesh and
+    /// every message are the same for any count). `None`: the environment variable
+    /// `IDMESH_THREADS`, else all cores ([`crate::threads::count`]). Must be at least 1.
+    /// Default: `None`.
+    pub threads: Option<usize>,
 }
 
 /// The largest [`Options3::coplanar_tolerance`] accepted: a fold of one hundredth of a
@@ -173,6 +178,7 @@ impl fmt::Debug for Options3 {
             .field("optimize_level", &self.optimize_level)
             .field("optimize_scheme", &self.optimize_scheme)
             .field("optimize_max_dihedral", &self.optimize_max_dihedral)
+            .field("threads", &self.threads)
             .finish()
     }
 }
@@ -257,7 +263,7 @@ pub fn tetrahedralize(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
                 }
                 stage(Stage::Output, || (0, mesh.tets.len() as u64))?;
             }
-            validate::check_output(&mesh)?;
+            validate::check_output(&mesh, crate::threads::resolve(opts.threads)?)?;
             Ok(mesh)
         })
     })
@@ -317,16 +323,16 @@ pub fn delaunay3d(points: &[[f64; 3]]) -> Result<TetMesh, Error> {
         return Ok(m);
     }
     catch_panic("", || {
-        crate::threads::count()?;
+        let threads = crate::threads::count()?;
         let mesh = delaunay::delaunay(points)?;
-        validate::check_output(&mesh)?;
+        validate::check_output(&mesh, threads)?;
         Ok(mesh)
     })
 }
 
 /// Rejects option values that cannot work.
 fn check_options(opts: &Options3) -> Result<(), Error> {
-    crate::threads::count()?;
+    crate::threads::resolve(opts.threads)?;
     if let Some(r) = opts.radius_edge {
         if !(r.is_finite() && r >= 1.0) {
             return Err(Error::InvalidOption(format!(

@@ -35,8 +35,10 @@ pub fn validate_mesh(mesh: &TetMesh) -> Result<(), Error> {
 /// than once (open fan) or exactly once (closed fan): this rules out tets that overlap while
 /// each pair of neighbours looks right. It leaves out the empty-sphere test of [`validate_mesh`] (`-C`), which costs about a third
 /// of a run and checks a property the kernel keeps by construction.
-pub(crate) fn check_output(mesh: &TetMesh) -> Result<(), Error> {
-    check_output_with(mesh, aim_into, crate::threads::count().unwrap_or(1))
+/// The passes over the tets are split over `threads` threads; what it reports does not depend
+/// on how many.
+pub(crate) fn check_output(mesh: &TetMesh, threads: usize) -> Result<(), Error> {
+    check_output_with(mesh, aim_into, threads)
 }
 
 /// [`check_output`] with the aim points of [`Stars`] chosen by `aim` (tests force ties) and

@@ -33,10 +33,10 @@ pub fn validate_mesh(mesh: &TetMesh) -> Result<(), Error> {
 /// tet), the tets around every interior vertex covering the directions around it exactly
 /// once ([`Stars`], one count per vertex), and every other edge's tets turning around it less
 /// than once (open fan) or exactly once (closed fan): this rules out tets that overlap while
-/// each pair of neighbours looks right. It leaves out the empty-sphere test of [`validate_mesh`] (`-C`), which costs about a third
-/// of a run and checks a property the kernel keeps by construction.
-/// The passes over the tets are split over `threads` threads; what it reports does not depend
-/// on how many.
+/// each pair of neighbours looks right. It leaves out the empty-sphere test of
+/// [`validate_mesh`] (`-C`), which costs about a third of a run and checks a property the
+/// kernel keeps by construction. The passes over the tets are split over `threads` threads;
+/// what it reports does not depend on how many.
 pub(crate) fn check_output(mesh: &TetMesh, threads: usize) -> Result<(), Error> {
     check_output_with(mesh, aim_into, threads)
 }
@@ -310,11 +310,12 @@ pub(crate) fn aim_into(c: [[f64; 3]; 4]) -> [f64; 3] {
 ///
 /// The proof, per vertex with no open face around it: count exactly the tets whose corner at
 /// the vertex contains the direction towards an aim point ([`aim_into`] of the first tet
-/// listing the vertex; any point other than the vertex would do). Around such a vertex every face through it has a tet on each side,
-/// linked as neighbours on opposite sides of it (checked by [`check_neighbours`]), and every
-/// tet is positively oriented: seen from the vertex, the faces opposite it are positively
-/// oriented triangles on the sphere of directions, glued in pairs along their sides, each
-/// pair on opposite sides of the shared arc. The number of triangles over a direction then
+/// listing the vertex; any point other than the vertex would do). Around such a vertex every
+/// face through it has a tet on each side, linked as neighbours on opposite sides of it
+/// (checked by [`check_neighbours`]), and every tet is positively oriented: seen from the
+/// vertex, the faces opposite it are positively oriented triangles on the sphere of
+/// directions, glued in pairs along their sides, each pair on opposite sides of the shared
+/// arc. The number of triangles over a direction then
 /// stays the same as the direction crosses any arc (one triangle is left, its neighbour is
 /// entered), so it is the same for every direction off the arcs: one count decides it.
 /// Exactly one means the tets around the vertex fill a ball around it once, every edge at it
@@ -344,8 +345,9 @@ struct Tally {
 }
 
 impl Stars {
-    /// Renumbers the vertices, checks that every tet is positively oriented, and counts (one
-    /// pass over the tets; the counts mean something only once the neighbours are checked).
+    /// Renumbers the vertices (with each one's tets and open faces), then checks that every
+    /// tet is positively oriented and counts, on `threads` threads: two passes over the tets.
+    /// The counts mean something only once the neighbours are checked.
     fn count(m: &TetMesh, aim: Aim, threads: usize) -> Result<Stars, String> {
         let nv = m.vertices.len();
         let mut local = vec![NONE; nv];
@@ -660,9 +662,9 @@ fn neighbours_of(m: &TetMesh, t: usize) -> Result<(), String> {
         }
         // `FACE[i]` lists the face outward for its tet: orient3d(face, own apex) > 0 for a
         // positively oriented tet (checked exactly by `Stars::count`). So n's apex lies
-        // strictly on the other side of the face exactly when n lists the face in the opposite cyclic
-        // order (orient3d changes sign with an odd permutation): a combinatorial test, no
-        // coordinates read.
+        // strictly on the other side of the face exactly when n lists the face in the
+        // opposite cyclic order (orient3d changes sign with an odd permutation): a
+        // combinatorial test, no coordinates read.
         if next == face[1] {
             return Err(format!(
                 "tets {t} and {n} lie on the same side of their shared face {face:?}"

@@ -1193,6 +1193,19 @@ pub fn prism_plc(
     z1: f64,
     frame: &Frame,
 ) -> Plc {
+    let holes: Vec<_> = hole.into_iter().collect();
+    prism_plc_holes(outer, &holes, z0, z1, frame)
+}
+
+/// [`prism_plc`] with any number of disjoint holes through the prism, each star-shaped around
+/// its seed.
+pub fn prism_plc_holes(
+    outer: &[[f64; 2]],
+    holes: &[(&[[f64; 2]], [f64; 2])],
+    z0: f64,
+    z1: f64,
+    frame: &Frame,
+) -> Plc {
     let mut plc = Plc::default();
     let loop_at = |plc: &mut Plc, poly: &[[f64; 2]]| -> (Vec<u32>, Vec<u32>) {
         let o = plc.points.len() as u32;
@@ -1228,7 +1241,7 @@ pub fn prism_plc(
         }
     };
     sides(&mut plc, &ob, &ot, 3);
-    if let Some((h, seed)) = hole {
+    for &(h, seed) in holes {
         let (hb, ht) = loop_at(&mut plc, h);
         bottom.polygons.push(hb.clone());
         bottom.holes.push(frame.apply([seed[0], seed[1], z0]));

@@ -447,16 +447,9 @@ impl Mesher<'_> {
         if self.below_floor(&c) {
             return Ok(());
         }
-        let Some(mut cc) = tet_circumcenter(c) else {
+        let Some(cc) = point_in_circumsphere(c) else {
             return Ok(());
         };
-        // The rounded circumcenter of a nearly flat tet (four nearly cocircular points) can be
-        // far from the true one and outside the tet's circumsphere: inserting it would leave
-        // the tet in place. Its centroid is in the sphere (inside the tet) and removes it.
-        let o = crate::predicates::orient3d(c[0], c[1], c[2], c[3]);
-        if crate::predicates::insphere(c[0], c[1], c[2], c[3], cc) * o <= 0.0 {
-            cc = [0, 1, 2].map(|k| 0.25 * (c[0][k] + c[1][k] + c[2][k] + c[3][k]));
-        }
         self.place_for_tet(t, vs, c, cc)
     }
 
@@ -559,5 +552,90 @@ impl Mesher<'_> {
             cur = n;
         }
         None
+    }
+}
+
+/// A point strictly inside the circumsphere of the positive tet `c` (exact `insphere`), to
+/// remove it by: its circumcentre when the rounded one passes, else the first that passes of
+/// its centroid, its face centroids and its edge midpoints. The rounded circumcentre of a
+/// nearly flat tet (four nearly cocircular points) can be far from the true one, outside the
+/// sphere, or undefined (the rounded determinant is zero although the exact orientation is
+/// not); inserting it would leave the tet in place. `None` when no candidate passes (a tet
+/// flat to within rounding of its own points).
+pub(super) fn point_in_circumsphere(c: [[f64; 3]; 4]) -> Option<[f64; 3]> {
+    let o = crate::predicates::orient3d(c[0], c[1], c[2], c[3]);
+    let inside = |p: [f64; 3]| crate::predicates::insphere(c[0], c[1], c[2], c[3], p) * o > 0.0;
+    let mean = |ids: &[usize]| {
+        let n = ids.len() as f64;
+        [0, 1, 2].map(|k| ids.iter().map(|&i| c[i][k]).sum::<f64>() / n)
+    };
+    let faces = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
+    let edges = [[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]];
+    tet_circumcenter(c)
+        .into_iter()
+        .chain(std::iter::once(mean(&[0, 1, 2, 3])))
+        .chain(faces.iter().map(|f| mean(f)))
+        .chain(edges.iter().map(|e| mean(e)))
+        .find(|&p| inside(p))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::point_in_circumsphere;
+    use crate::geometry::tet_circumcenter;
+    use crate::predicates::{insphere, orient3d};
+
+    /// The four corners of a rectangle cutting a corner off a rotated plate (Steiner points on
+    /// four of its edges, from `tests/cad3d.rs`): coplanar before the rotation's rounding,
+    /// barely positive after it. The mesher's old rule (the rounded circumcentre, else
+    /// nothing) left this tet in a `-pq` mesh with a 0° dihedral angle.
+    #[test]
+    fn a_flat_tet_gets_a_point_inside_its_circumsphere() {
+        let mut c = [
+            [
+                0.033406575520833336,
+                0.010823567708333343,
+                0.3964029947916667,
+            ],
+            [
+                0.057820638020833336,
+                0.18172200520833334,
+                0.11564127604166667,
+            ],
+            [
+                0.42952473958333337,
+                -0.11564127604166667,
+                -0.033040364583333336,
+            ],
+            [
+                0.40511067708333337,
+                -0.2865397135416667,
+                0.24772135416666666,
+            ],
+        ];
+        let o = orient3d(c[0], c[1], c[2], c[3]);
+        assert_ne!(o, 0.0, "the corners are not exactly coplanar");
+        if o < 0.0 {
+            c.swap(0, 1);
+        }
+        let o = orient3d(c[0], c[1], c[2], c[3]);
+        let inside = |p: [f64; 3]| insphere(c[0], c[1], c[2], c[3], p) * o > 0.0;
+        // The rounded circumcentre does not do.
+        assert!(tet_circumcenter(c).map_or(true, |cc| !inside(cc)));
+        let p = point_in_circumsphere(c).expect("a point inside the sphere");
+        assert!(inside(p));
+        // A regular tet keeps its circumcentre.
+        let r = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        let r = if orient3d(r[0], r[1], r[2], r[3]) > 0.0 {
+            r
+        } else {
+            [r[1], r[0], r[2], r[3]]
+        };
+        assert_eq!(point_in_circumsphere(r), tet_circumcenter(r));
     }
 }

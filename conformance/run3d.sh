@@ -9,6 +9,9 @@
 #   IDMESH_BIN       use this idmesh binary instead of building target/release/idmesh
 #   IDMESH_TIMEOUT   seconds allowed per idmesh run (default 600)
 #   KEEP_WORK=1      keep the temporary directory with every case's files
+#   CAD_CASES        generated CAD-like parts per family (default 6)
+#
+# Then the same for generated CAD-like parts (tests/cad3d.rs, CAD_CASES per family).
 #
 # Prints one line per case (PASS/FAIL, tetrahedron count, meshing time), the verifier's
 # failing checks under a failed case, and a final "N passed, M failed" line.
@@ -23,7 +26,7 @@ verifier="$shared/tools/verify3d.py"
 cases="$here/cases3d.txt"
 
 if [ ! -d "$data" ] || [ ! -f "$verifier" ]; then
-    echo "run3d: $shared (data/3d and tools/verify3d.py) not found; skipping the 2D conformance check"
+    echo "run3d: $shared (data/3d and tools/verify3d.py) not found; skipping the 3D conformance check"
     exit 0
 fi
 
@@ -89,27 +92,26 @@ failed=0
 missing=0
 listed=" "
 case_no=0
-while IFS= read -r line || [ -n "$line" ]; do
-    line="${line%%#*}"
-    read -r -a tok <<<"$line"
-    [ "${#tok[@]}" -eq 0 ] && continue
-    case_no=$((case_no + 1))
-    file="${tok[0]}"
-    switches="${tok[1]:-}"
-    listed="$listed$file "
-    extra=("${tok[@]:2}")
-    label="$(printf '%-26s %-16s' "$file" "$switches")"
-    dir="$work/case$case_no"
-    mkdir -p "$dir"
-    if [ ! -f "$data/$file" ]; then
-        echo "FAIL $label input $data/$file not found"
-        failed=$((failed + 1))
-        continue
-    fi
-    cp "$data/$file" "$dir/"
-    stem="${file%.*}"
-    [ -f "$data/$stem.node" ] && [ "$file" != "$stem.node" ] && cp "$data/$stem.node" "$dir/"
 
+# Meshes SRC/FILE (and SRC/STEM.node when there is one) with SWITCHES in a new work directory
+# and judges it with the verifier (its EXTRA arguments after the first three); LABEL names the
+# case in the report.
+one_case() {
+    local label="$1" src="$2" file="$3" switches="$4"
+    local extra=("${@:5}")
+    case_no=$((case_no + 1))
+    local dir="$work/case$case_no"
+    mkdir -p "$dir"
+    if [ ! -f "$src/$file" ]; then
+        echo "FAIL $label input $src/$file not found"
+        failed=$((failed + 1))
+        return
+    fi
+    cp "$src/$file" "$dir/"
+    local stem="${file%.*}"
+    [ -f "$src/$stem.node" ] && [ "$file" != "$stem.node" ] && cp "$src/$stem.node" "$dir/"
+
+    local t0 t1 rc secs ntet result
     t0=$(date +%s.%N)
     (cd "$dir" && timeout "$timeout_s" "$bin" tetgen "$switches" -Q "$file") \
         >"$dir/idmesh.out" 2>&1
@@ -124,18 +126,18 @@ while IFS= read -r line || [ -n "$line" ]; do
         echo "FAIL $label idmesh exit $rc after $secs s"
         sed 's/^/       /' "$dir/idmesh.out" | tail -5
         failed=$((failed + 1))
-        continue
+        return
     fi
-    vinput="$dir/$file"
+    local vinput="$dir/$file"
     # -Y keeps the input surface: the mesh is not Delaunay next to it.
-    delaunay=(--require-delaunay)
+    local delaunay=(--require-delaunay)
     case "$switches" in *Y*) delaunay=() ;; esac
     if python3 "$verifier" "$vinput" "$dir/$stem.1.node" "$dir/$stem.1.ele" "$dir/$stem.1.face" \
         "${delaunay[@]}" "${extra[@]}" >"$dir/verify.out" 2>&1; then
         if [ "${#delaunay[@]}" -eq 0 ] && ! surface_kept "$dir/$file" "$dir/$stem.1.face"; then
             echo "FAIL $label $result: a boundary face has a Steiner vertex (-Y)"
             failed=$((failed + 1))
-            continue
+            return
         fi
         echo "PASS $label $result"
         passed=$((passed + 1))
@@ -144,7 +146,42 @@ while IFS= read -r line || [ -n "$line" ]; do
         grep -E '\[FAIL\]|^ *!|Error|error' "$dir/verify.out" | head -12 | sed 's/^/       /'
         failed=$((failed + 1))
     fi
+}
+
+while IFS= read -r line || [ -n "$line" ]; do
+    line="${line%%#*}"
+    read -r -a tok <<<"$line"
+    [ "${#tok[@]}" -eq 0 ] && continue
+    file="${tok[0]}"
+    switches="${tok[1]:-}"
+    listed="$listed$file "
+    one_case "$(printf '%-26s %-16s' "$file" "$switches")" "$data" "$file" "$switches" \
+        "${tok[@]:2}"
 done <"$cases"
+
+# Generated CAD-like parts (tests/cad3d.rs: plates with holes, brackets, gears, tubes, fillet
+# blocks, thin slabs; random sizes and rotations), CAD_CASES per family (default 6), each with
+# the switches its property picked, through the same verifier.
+cad="$work/cad"
+if (cd "$root" && IDMESH_CAD_DUMP="$cad" PROPTEST_CASES="${CAD_CASES:-6}" \
+    cargo test --release --quiet --test cad3d >"$work/cad.out" 2>&1); then
+    for f in "$cad"/*.poly; do
+        [ -e "$f" ] || continue
+        sw="-$(cat "${f%.poly}.switches")"
+        bound=()
+        case "$sw" in
+            -pq1.414*) bound=(--radius-edge 1.414) ;;
+            -pq) bound=(--radius-edge 2.0) ;;
+        esac
+        case "$sw" in *Y*) bound=() ;; esac
+        one_case "$(printf '%-26s %-16s' "$(basename "$f")" "$sw")" "$cad" "$(basename "$f")" \
+            "$sw" "${bound[@]}"
+    done
+else
+    echo "FAIL generated CAD parts: cargo test --test cad3d (writing them) failed"
+    tail -5 "$work/cad.out" | sed 's/^/       /'
+    failed=$((failed + 1))
+fi
 
 # Every input in the shared data set must have at least one case.
 for f in "$data"/*.poly "$data"/*.smesh "$data"/*.off "$data"/*.stl "$data"/*.ply "$data"/*.mesh; do

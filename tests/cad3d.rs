@@ -7,6 +7,8 @@
 //! The families:
 //! - **plates** with one to four cylindrical through-holes (regular 8- to 64-gons at random
 //!   positions and phases), from thin sheets to blocks;
+//! - **thin walls**: a plate with one hole whose circle passes within 10^-4 to 10^-1 of its
+//!   radius from the plate's edge (TetGen 1.5 aborts on some: an assertion in `locate`);
 //! - **brackets**: an L profile extruded, with an optional concave fillet of many thin facets in
 //!   the inner corner, and through-holes in both legs (their axes at right angles);
 //! - **gears**: 8 to 40 trapezoidal teeth around a polygonal bore;
@@ -171,6 +173,32 @@ fn plate(raw: &PlateRaw) -> (Plc, Truth) {
         .collect();
     let outer = vec![[0.0, 0.0], [lx, 0.0], [lx, ly], [0.0, ly]];
     prism_part(outer, holes, t, make_frame(*f))
+}
+
+/// A plate (extents, thickness fraction) with one hole whose circle passes `gap` times its
+/// radius from the plate's edge: a thin wall down to a ten-thousandth of the radius.
+type WallRaw = ([f64; 2], f64, HoleRaw, f64, FrameRaw);
+
+fn wall_raw() -> impl Strategy<Value = WallRaw> {
+    (
+        [1.0..3.0f64, 0.5..2.0f64],
+        0.05..0.5f64,
+        hole_raw(),
+        -4.0..-1.0f64,
+        frame_raw(),
+    )
+}
+
+fn thin_wall(raw: &WallRaw) -> (Plc, Truth) {
+    let (e, tf, (n, rf, c, phase), gap, f) = *raw;
+    let (lx, ly) = (q(e[0], 4), q(e[1], 4));
+    let t = q(tf * ly, 6).max(1.0 / 64.0);
+    let r = rf * 0.45 * lx.min(ly);
+    let cx = q(1.1 * r + c[0] * (lx - 2.2 * r), 24);
+    let cy = q(r * (1.0 + 10f64.powf(gap)), 24);
+    let hole = (ngon(n, [cx, cy], r, phase), [cx, cy]);
+    let outer = vec![[0.0, 0.0], [lx, 0.0], [lx, ly], [0.0, ly]];
+    prism_part(outer, vec![hole], t, make_frame(f))
 }
 
 // -------------------------------------------------------------------------------- brackets
@@ -536,6 +564,7 @@ macro_rules! family {
 const ALL: [usize; 4] = [0, 1, 2, 3];
 
 family!(plates_with_holes, plate_raw(), plate, ALL);
+family!(plates_with_a_thin_wall, wall_raw(), thin_wall, ALL);
 family!(
     brackets_with_holes_and_fillets,
     bracket_raw(),
@@ -564,8 +593,10 @@ family!(
 /// Steiner points of the fillet's edges off the surface leaves a moved point within rounding
 /// of a fillet facet (a tet of volume 7e-18 with edges near 2: the checker calls it flat), and
 /// on a sister part (20 fillet facets) no point of a split point's wedge sees its whole star
-/// ("internal error"). TetGen 1.5 meshes both. The wedge of such a point holds link faces
-/// that pass within 1e-17 of it (measured); the suppression needs another way to re-cone it.
+/// ("internal error"). TetGen 1.5 meshes both. The star of such a point holds faces that pass
+/// within 1e-17 of it (measured: a Steiner point rounded off a fillet facet, and points moved
+/// just off the surface before it); re-coning the star from one of its own vertices was tried
+/// and does not help either (no vertex sees all of its faces). Left to do.
 #[test]
 #[ignore = "known failure: -Y on a concave fillet of thin facets (issue 12)"]
 fn bracket_with_a_thin_facet_fillet_keeping_the_surface() {

@@ -482,11 +482,18 @@ impl Tets {
     /// [`Tets::cancel_cavity`] (a new `find_cavity` also drops a pending cavity). Every tet must
     /// have all four neighbours (the store is closed by ghosts).
     pub fn find_cavity(&mut self, p: [f64; 3], start: TetId) -> bool {
+        self.find_cavity_within(p, start, usize::MAX) == Some(true)
+    }
+
+    /// [`Tets::find_cavity`] that gives up once the cavity holds more than `cap` tets: `None`
+    /// then, with a partial cavity pending (to be cancelled). For probes that only want a small
+    /// cavity and would otherwise pay for a huge one they then discard.
+    pub fn find_cavity_within(&mut self, p: [f64; 3], start: TetId, cap: usize) -> Option<bool> {
         self.clear_cavity();
         self.pending = true;
         self.cavity_point = p;
         if start as usize >= self.tets.len() || !self.alive(start) || !self.conflict(start, p) {
-            return false;
+            return Some(false);
         }
         let Tets {
             tets,
@@ -511,6 +518,11 @@ impl Tets {
                     TESTED_OUT => {}
                     _ => {
                         if conflict_in(tets, pts, u, p) {
+                            if cavity.len() >= cap {
+                                // Every tet in the cavity or tested out has its state
+                                // recorded where clear_cavity finds it.
+                                return None;
+                            }
                             set_state(state, u, IN_CAVITY);
                             cavity.push(u as TetId);
                             // u's neighbours are tested when u's turn comes: start loading
@@ -526,7 +538,7 @@ impl Tets {
                 boundary.push(neighbor_ref(t, f));
             }
         }
-        true
+        Some(true)
     }
 
     /// The tets of the pending cavity (empty when none is pending).

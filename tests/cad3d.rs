@@ -491,16 +491,6 @@ fn options(mode: usize) -> Options3 {
     o
 }
 
-/// Tolerance for Steiner points on slanted facets and edges: 64 ulps of the largest coordinate.
-fn tolerance(plc: &Plc) -> f64 {
-    let m = plc
-        .points
-        .iter()
-        .flatten()
-        .fold(0.0f64, |a, x| a.max(x.abs()));
-    64.0 * f64::EPSILON * m.max(1.0)
-}
-
 /// With `IDMESH_CAD_DUMP=DIR`, every part is written as `DIR/<family>-<n>.poly` (with its
 /// switches in `<family>-<n>.switches`) instead of being meshed, for the command line and
 /// `verify3d.py`. Returns whether it was.
@@ -530,7 +520,7 @@ fn run(family: &str, part: (Plc, Truth), mode: usize) -> Result<(), TestCaseErro
     };
     let spec = Spec3 {
         check_quality: !o.keep_surface,
-        tol: tolerance(&plc),
+        tol: common3d::tolerance(&plc),
         domain,
         volume,
         timeout: std::time::Duration::from_secs(60),

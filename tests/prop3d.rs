@@ -90,16 +90,6 @@ fn option_sets(volume: f64) -> [Options3; 5] {
     ]
 }
 
-/// Tolerance for Steiner points on slanted facets and edges: 64 ulps of the largest coordinate.
-fn tolerance(plc: &Plc) -> f64 {
-    let m = plc
-        .points
-        .iter()
-        .flatten()
-        .fold(0.0f64, |a, x| a.max(x.abs()));
-    64.0 * f64::EPSILON * m.max(1.0)
-}
-
 /// Meshes under the three option sets and checks each.
 fn run(
     plc: &Plc,
@@ -112,7 +102,7 @@ fn run(
     let spec = Spec3 {
         // Keeping the surface, the bounds are not met next to it (as in TetGen).
         check_quality: strict && !o.keep_surface,
-        tol: tolerance(plc),
+        tol: common3d::tolerance(plc),
         domain: Some(domain),
         timeout: std::time::Duration::from_secs(30),
         ..Spec3::default()

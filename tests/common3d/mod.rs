@@ -1256,6 +1256,17 @@ pub fn prism_plc_holes(
     plc
 }
 
+/// Tolerance for Steiner points on slanted facets and edges (`Spec3::tol`): 64 ulps of the
+/// largest coordinate.
+pub fn tolerance(plc: &Plc) -> f64 {
+    let m = plc
+        .points
+        .iter()
+        .flatten()
+        .fold(0.0f64, |a, x| a.max(x.abs()));
+    64.0 * f64::EPSILON * m.max(1.0)
+}
+
 /// A regular `n`-gon of radius `r` around the origin.
 pub fn regular_polygon(n: usize, r: f64) -> Vec<[f64; 2]> {
     (0..n)

@@ -489,6 +489,21 @@ impl Tets {
     /// then, with a partial cavity pending (to be cancelled). For probes that only want a small
     /// cavity and would otherwise pay for a huge one they then discard.
     pub fn find_cavity_within(&mut self, p: [f64; 3], start: TetId, cap: usize) -> Option<bool> {
+        self.find_cavity_visit(p, start, cap, |_, _, _| true)
+    }
+
+    /// [`Tets::find_cavity_within`] that shows each tet to `visit` as it joins the cavity: its
+    /// id, its vertices, and for each face whether the neighbour across it joined before. When
+    /// `visit` returns `false` the search stops as at the cap (`None`, a partial cavity
+    /// pending). For probes that judge a cavity tet by tet and can give up on the first bad
+    /// one instead of paying for the whole cavity.
+    pub fn find_cavity_visit(
+        &mut self,
+        p: [f64; 3],
+        start: TetId,
+        cap: usize,
+        mut visit: impl FnMut(TetId, [VertexId; 4], [bool; 4]) -> bool,
+    ) -> Option<bool> {
         self.clear_cavity();
         self.pending = true;
         self.cavity_point = p;
@@ -505,6 +520,9 @@ impl Tets {
         } = self;
         set_state(state, start as usize, IN_CAVITY);
         cavity.push(start);
+        if !visit(start, tets[start as usize].v, [false; 4]) {
+            return None;
+        }
         let mut i = 0;
         // Each tet enters the cavity once, so the loop is bounded by the number of tets.
         while i < cavity.len() {
@@ -525,6 +543,12 @@ impl Tets {
                             }
                             set_state(state, u, IN_CAVITY);
                             cavity.push(u as TetId);
+                            let joined = tets[u]
+                                .n
+                                .map(|h| get_state(state, (h >> 2) as usize) == IN_CAVITY);
+                            if !visit(u as TetId, tets[u].v, joined) {
+                                return None;
+                            }
                             // u's neighbours are tested when u's turn comes: start loading
                             // them now, so the cache misses overlap with other tests.
                             for h in tets[u].n {

@@ -9,8 +9,8 @@
 //! point `p` of the *picking region*, the ball of radius [`PICK_FRACTION`]` R` around `o`:
 //! * candidates are `o` first, then up to [`CANDIDATES`] points of the picking region
 //!   (pseudo-random, seeded by the sliver's vertices, so runs are reproducible), up to
-//!   [`CANDIDATES_HARD`] while none meets the target. Each must be inside `t`'s circumsphere
-//!   (exact `insphere`), so that its cavity contains `t`;
+//!   [`CANDIDATES_HARD`] while some go in but none meets the target. Each must be inside `t`'s
+//!   circumsphere (exact `insphere`), so that its cavity contains `t`;
 //! * for each, the would-be Bowyer–Watson cavity is found (exact `insphere`, nothing changes)
 //!   and the new tetrahedra inside the domain it would make are measured; a candidate whose
 //!   cavity would cross or whose point would encroach a subface or subsegment is skipped;
@@ -54,6 +54,7 @@ use crate::geometry::{
 use crate::mesh3d::store::{Located, GHOST};
 use crate::predicates::{in_diametral_ball_seg3, in_diametral_ball_tri, insphere, orient3d};
 use crate::progress::tick;
+use crate::NONE;
 
 /// The minimum dihedral angle target used with a radius-edge bound when none is given
 /// (degrees): TetGen's `-q` leaves it at 0 (no target); idmesh removes tetrahedra below 15°
@@ -70,11 +71,13 @@ const PICK_FRACTION: f64 = 0.3;
 /// Points tried in the picking region besides the circumcentre.
 const CANDIDATES: u32 = 12;
 
-/// Points tried in all when none of the first [`CANDIDATES`] meets the target. Taking the best
-/// of too few makes a new sliver, which the next round treats in turn: a domed 21-gon prism
-/// at -pq1.414a0.0013 ran out of rounds that way (9,109 tets, one sliver of 5.9° left); with
-/// 48 it is done in 3 rounds with 6,585 tets, and fewer points overall on the benchmark
-/// inputs (`bench/quality3d.py`).
+/// Points tried in all when some of the first [`CANDIDATES`] go in but none meets the target.
+/// Taking the best of too few makes a new sliver, which the next round treats in turn: a domed
+/// 21-gon prism at -pq1.414a0.0013 ran out of rounds that way (9,109 tets, one sliver of 5.9°
+/// left); with 48 it is done in 3 rounds with 6,585 tets, and fewer points overall on the
+/// benchmark inputs (`bench/quality3d.py`). When none of the first goes in, the boundary is
+/// split without trying more: more only lowered the demand a little, and cost a third of the
+/// pass on scanned surfaces (triceratops.off `-pq`, 1.84 s before, 1.48 s after).
 const CANDIDATES_HARD: u32 = 48;
 
 /// Largest cavity a candidate may have (tets). A sliver's picking region can reach into the
@@ -138,18 +141,32 @@ impl Mesher<'_> {
     }
 
     /// The tets inside the domain missing the target that the pass treats, and how many others
-    /// miss it but are exempt (next to a small input angle).
-    fn collect_slivers(&self, target: f64) -> Result<(Slivers, u64), Error> {
+    /// miss it but are exempt (next to a small input angle). `fine` holds, per tet slot, the
+    /// vertices of a tet found to meet the target (or below the size floor) in an earlier
+    /// round: a slot holding the same vertices holds the same tet, and is not measured again.
+    fn collect_slivers(
+        &self,
+        target: f64,
+        fine: &mut Vec<[u32; 4]>,
+    ) -> Result<(Slivers, u64), Error> {
         let mut out = Vec::new();
         let mut exempt = 0;
+        fine.resize(self.tets.num_slots(), [NONE; 4]);
         for t in 0..self.tets.num_slots() as u32 {
             tick(|| (self.steiner, self.steiner))?;
             if !self.tets.alive(t) || self.tets.is_ghost(t) || self.region_of(t) >= UNKNOWN {
                 continue;
             }
             let vs = self.tets.verts(t);
+            if fine[t as usize] == vs {
+                continue;
+            }
             let c = vs.map(|x| self.pts[x as usize]);
-            if !Self::is_sliver(c, target) || self.feat.in_one_facet(vs) || self.below_floor(&c) {
+            if !Self::is_sliver(c, target) || self.below_floor(&c) {
+                fine[t as usize] = vs;
+                continue;
+            }
+            if self.feat.in_one_facet(vs) {
                 continue;
             }
             if self.sharp.exempts_sliver(vs, &self.feat, &self.pts, target) {
@@ -170,8 +187,9 @@ impl Mesher<'_> {
         let mut counts = SliverCounts::default();
 
         let mut exhausted = false;
+        let mut fine = Vec::new();
         'rounds: for round in 0..MAX_ROUNDS {
-            let (list, _) = self.collect_slivers(target)?;
+            let (list, _) = self.collect_slivers(target, &mut fine)?;
             if list.is_empty() {
                 break;
             }
@@ -201,7 +219,7 @@ impl Mesher<'_> {
                 break; // every demand was dropped (size floor): nothing more to gain
             }
         }
-        let (left, exempt) = self.collect_slivers(target)?;
+        let (left, exempt) = self.collect_slivers(target, &mut fine)?;
         counts.left = left.len() as u64;
         counts.exempt = exempt;
         if exhausted {
@@ -239,8 +257,11 @@ impl Mesher<'_> {
         // When every candidate encroaches: the one demanding the least splitting.
         let mut least: Option<(u32, [f64; 3])> = None;
         for k in 0..=CANDIDATES_HARD {
-            if k > CANDIDATES && best.is_some_and(|b| b.0 .0) {
-                break; // a candidate meeting the target, with more bad tets than hoped
+            if k > CANDIDATES && best.map_or(true, |b| b.0 .0) {
+                // A candidate meeting the target, with more bad tets than hoped; or none
+                // that goes in, and the boundary is split instead (more candidates would
+                // only lower the demand a little).
+                break;
             }
             let p = if k == 0 {
                 cc
@@ -254,7 +275,14 @@ impl Mesher<'_> {
             {
                 continue;
             }
-            match self.probe(t, p) {
+            // Once a candidate goes in, no encroaching one is chosen; before, only one
+            // demanding less than the least so far.
+            let bound = match (best, least) {
+                (Some(_), _) => 1,
+                (None, Some((d, _))) => d,
+                (None, None) => u32::MAX,
+            };
+            match self.probe(t, p, bound) {
                 Probe::Fits(worst, bad) => {
                     // Rank: meets the target, then fewest new tets above the radius-edge
                     // bound (each would be refined in turn), then the best angle.
@@ -286,47 +314,53 @@ impl Mesher<'_> {
     /// in its diametral ball, or the cavity crosses a subface), unusable (on a vertex, or
     /// outside the hull), or accepted with the worst angle of its new tets inside the domain
     /// (the smallest of each one's smallest dihedral and 180° minus its largest).
-    fn probe(&mut self, t: u32, p: [f64; 3]) -> Probe {
+    ///
+    /// A candidate demanding `bound` or more splitting cannot be chosen (one that goes in, or
+    /// one demanding less, was found before it): its search stops there, as unusable. Most
+    /// candidates next to the boundary encroach, and their cavities are big (a sliver's
+    /// circumsphere is), so this saves most of the probing on surface-heavy models.
+    fn probe(&mut self, t: u32, p: [f64; 3], bound: u32) -> Probe {
         let start = match self.tets.locate(p, t) {
             Located::InTet(s) => s,
             Located::Vertex(_) => return Probe::Unusable,
         };
-        if self.tets.find_cavity_within(p, start, PROBE_CAP) != Some(true)
-            || !self.tets.in_cavity(t)
-        {
-            self.tets.cancel_cavity();
-            return Probe::Unusable;
-        }
         // How much splitting the point would demand: subfaces it encroaches or whose cavity
         // crosses them count 1, subsegments 3 (a split there changes every facet through
         // the edge). Each is counted once per cavity tet holding it: a rough measure only
-        // used to rank candidates.
+        // used to rank candidates. A tet joining the cavity counts its subfaces that `p`
+        // encroaches; one whose neighbour across it joined before counts for both sides (the
+        // neighbour counted it then only if encroached).
         let mut demand = 0u32;
-        for &u in self.tets.cavity() {
-            let vs = self.tets.verts(u);
-            if vs.contains(&GHOST) {
-                // Outside the hull, hence outside the domain.
-                self.tets.cancel_cavity();
-                return Probe::Unusable;
-            }
-            for f in 0..4 {
-                let fv = face_of(vs, f);
-                if self.feat.subface(fv).is_some() {
-                    let [a, b, c] = fv.map(|x| self.pts[x as usize]);
-                    if self.tets.in_cavity(self.tets.neighbor(u, f).0)
-                        || in_diametral_ball_tri(a, b, c, p)
-                    {
-                        demand += 1;
+        let mut outside = false;
+        let (feat, pts) = (&self.feat, &self.pts);
+        let found = self
+            .tets
+            .find_cavity_visit(p, start, PROBE_CAP, |_, vs, joined| {
+                if vs.contains(&GHOST) {
+                    // Outside the hull, hence outside the domain.
+                    outside = true;
+                    return false;
+                }
+                for (f, &both) in joined.iter().enumerate() {
+                    let fv = face_of(vs, f);
+                    if feat.subface(fv).is_some() {
+                        let [a, b, c] = fv.map(|x| pts[x as usize]);
+                        let ball = u32::from(in_diametral_ball_tri(a, b, c, p));
+                        demand += if both { 2 - ball } else { ball };
                     }
                 }
-            }
-            for &(i, j) in &EDGES {
-                if self.feat.subseg(vs[i], vs[j]).is_some()
-                    && in_diametral_ball_seg3(self.pts[vs[i] as usize], self.pts[vs[j] as usize], p)
-                {
-                    demand += 3;
+                for &(i, j) in &EDGES {
+                    if feat.subseg(vs[i], vs[j]).is_some()
+                        && in_diametral_ball_seg3(pts[vs[i] as usize], pts[vs[j] as usize], p)
+                    {
+                        demand += 3;
+                    }
                 }
-            }
+                demand < bound
+            });
+        if found != Some(true) || outside || !self.tets.in_cavity(t) {
+            self.tets.cancel_cavity();
+            return Probe::Unusable;
         }
         if demand > 0 {
             self.tets.cancel_cavity();

@@ -8,7 +8,7 @@ use cli_common::{idmesh, ok};
 
 const FILES: [&str; 2] = ["square_hole.poly", "3d_box_hole.poly"];
 
-fn workdir(name: &str) -> std::path::PathBuf {
+fn workdir(name: &str) -> cli_common::WorkDir {
     cli_common::workdir(&format!("formats-{name}"), &FILES)
 }
 
@@ -57,7 +57,6 @@ fn tetgen_k_g_and_format_write_the_same_mesh() {
         .map(|n| n.trim().parse::<usize>().unwrap())
         .sum();
     assert_eq!(counts, 6 * ntet, "{out}");
-    std::fs::remove_dir_all(&d).ok();
 }
 
 #[test]
@@ -95,5 +94,4 @@ fn triangle_format_and_errors() {
             String::from_utf8_lossy(&o.stderr)
         );
     }
-    std::fs::remove_dir_all(&d).ok();
 }

@@ -8,7 +8,7 @@ use cli_common::{idmesh, ok};
 
 const FILES: [&str; 2] = ["square_hole.poly", "3d_box_hole.poly"];
 
-fn workdir(name: &str) -> std::path::PathBuf {
+fn workdir(name: &str) -> cli_common::WorkDir {
     cli_common::workdir(&format!("show-{name}"), &FILES)
 }
 
@@ -53,7 +53,6 @@ fn draws_2d_and_3d_meshes_as_svg_and_png() {
         &["show", "3d_box_hole.1", "--cut", "z=0.5", "-o", "cut.png"],
     ));
     assert!(d.join("cut.png").exists());
-    std::fs::remove_dir_all(&d).ok();
 }
 
 #[test]
@@ -91,5 +90,4 @@ fn errors_are_one_line_with_status_1() {
             "{args:?}: {err}"
         );
     }
-    std::fs::remove_dir_all(&d).ok();
 }

@@ -7,7 +7,7 @@ mod cli_common;
 use cli_common::{idmesh, ok};
 use idmesh::io::tetgen::{parse_edge, parse_ele, parse_node};
 
-fn workdir(name: &str) -> std::path::PathBuf {
+fn workdir(name: &str) -> cli_common::WorkDir {
     cli_common::workdir(&format!("tetgen-switches-{name}"), &["3d_cube.poly"])
 }
 

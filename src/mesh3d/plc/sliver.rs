@@ -46,13 +46,13 @@
 //! everywhere except next to small input angles (see the measurements in the branch report and
 //! the property tests in `tests/sliver3d.rs`).
 
-use super::{face_of, Mesher, EDGES, UNKNOWN};
+use super::{encroached_in, face_of, Enc, Mesher, UNKNOWN};
 use crate::error::Error;
 use crate::geometry::{
     dist2_3, tet_circumcenter, tet_dihedral_outside, tet_dihedral_range, tet_radius_edge,
 };
 use crate::mesh3d::store::{Located, GHOST};
-use crate::predicates::{in_diametral_ball_seg3, in_diametral_ball_tri, insphere, orient3d};
+use crate::predicates::{insphere, orient3d};
 use crate::progress::tick;
 use crate::NONE;
 
@@ -341,21 +341,13 @@ impl Mesher<'_> {
                     outside = true;
                     return false;
                 }
-                for (f, &both) in joined.iter().enumerate() {
-                    let fv = face_of(vs, f);
-                    if feat.subface(fv).is_some() {
-                        let [a, b, c] = fv.map(|x| pts[x as usize]);
-                        let ball = u32::from(in_diametral_ball_tri(a, b, c, p));
-                        demand += if both { 2 - ball } else { ball };
-                    }
-                }
-                for &(i, j) in &EDGES {
-                    if feat.subseg(vs[i], vs[j]).is_some()
-                        && in_diametral_ball_seg3(pts[vs[i] as usize], pts[vs[j] as usize], p)
-                    {
-                        demand += 3;
-                    }
-                }
+                encroached_in(feat, pts, p, vs, joined, |e, crossed, ball| {
+                    demand += match e {
+                        Enc::Face(..) if crossed => 2 - u32::from(ball),
+                        Enc::Face(..) => 1,
+                        Enc::Seg(_) => 3,
+                    };
+                });
                 demand < bound
             });
         if found != Some(true) || outside || !self.tets.in_cavity(t) {

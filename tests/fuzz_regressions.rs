@@ -524,8 +524,7 @@ fn tiny_facet_mesh_is_the_same_at_every_power_of_two_scale() {
 /// 8023). A subsegment's split point rounded onto a vertex of the other feature ("internal
 /// error: segment split point in facet …: Duplicate"), or the features split each other
 /// until the work budget ("… not recovered within … Steiner points"). Both are input errors
-/// now, naming the point and the facet, or valid meshes (case 1 is meshed since refused points
-/// stop at their first encroachment).
+/// now, naming the point and the facet.
 #[test]
 fn features_within_rounding_of_a_tiny_facet_are_named() {
     let cases = [
@@ -604,9 +603,6 @@ fn features_within_rounding_of_a_tiny_facet_are_named() {
                 assert_eq!((point, facet), (want, 12), "case {k}");
                 assert!(distance < 1e-20, "case {k}: {distance}");
             }
-            // The refinement order decides whether the features meet below the floor: a mesh
-            // is as good an answer, if it is valid.
-            Ok(m) => m.validate().unwrap(),
             r => panic!("case {k}: {:?}", r.map(|m| m.tets.len())),
         }
     }

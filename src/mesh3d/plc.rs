@@ -433,38 +433,11 @@ impl Mesher<'_> {
             Located::InTet(t) => t,
             Located::Vertex(_) => return Err(Vec::new()),
         };
-        let mut enc: Vec<Enc> = Vec::new();
-        if provisional {
-            // A provisional point is refused as soon as one cavity tet shows a subsegment or
-            // subface it encroaches (or a subface the cavity crosses): the splits queued for
-            // that tet's features stand for the point, as any encroached feature may, and the
-            // rest of the cavity is not searched. Refused circumcentres beyond the boundary
-            // have huge cavities reaching outside the domain: searching them whole took four
-            // fifths of a CAD model's refinement (rotor.off, 832,000 of 972,000 cavity tets).
-            let (feat, pts) = (&self.feat, &self.pts);
-            let found = self
-                .tets
-                .find_cavity_visit(p, start, usize::MAX, |_, vs, joined| {
-                    if !vs.contains(&GHOST) {
-                        encroached_in(feat, pts, p, vs, joined, |e, _, _| enc.push(e));
-                    }
-                    enc.is_empty()
-                });
-            match found {
-                Some(true) => {}
-                Some(false) => {
-                    self.tets.cancel_cavity();
-                    return Err(Vec::new());
-                }
-                None => {
-                    self.tets.cancel_cavity();
-                    return Err(enc);
-                }
-            }
-        } else if !self.tets.find_cavity(p, start) {
+        if !self.tets.find_cavity(p, start) {
             self.tets.cancel_cavity();
             return Err(Vec::new());
         }
+        let mut enc: Vec<Enc> = Vec::new();
         let mut touched_segs = std::mem::take(&mut self.scratch_segs);
         let mut touched_faces = std::mem::take(&mut self.scratch_faces);
         touched_segs.clear();

@@ -482,27 +482,20 @@ impl Tets {
     /// [`Tets::cancel_cavity`] (a new `find_cavity` also drops a pending cavity). Every tet must
     /// have all four neighbours (the store is closed by ghosts).
     pub fn find_cavity(&mut self, p: [f64; 3], start: TetId) -> bool {
-        self.find_cavity_within(p, start, usize::MAX) == Some(true)
+        self.find_cavity_visit(p, start, usize::MAX, |_, _| true) == Some(true)
     }
 
-    /// [`Tets::find_cavity`] that gives up once the cavity holds more than `cap` tets: `None`
-    /// then, with a partial cavity pending (to be cancelled). For probes that only want a small
-    /// cavity and would otherwise pay for a huge one they then discard.
-    pub fn find_cavity_within(&mut self, p: [f64; 3], start: TetId, cap: usize) -> Option<bool> {
-        self.find_cavity_visit(p, start, cap, |_, _, _| true)
-    }
-
-    /// [`Tets::find_cavity_within`] that shows each tet to `visit` as it joins the cavity: its
-    /// id, its vertices, and for each face whether the neighbour across it joined before. When
-    /// `visit` returns `false` the search stops as at the cap (`None`, a partial cavity
-    /// pending). For probes that judge a cavity tet by tet and can give up on the first bad
-    /// one instead of paying for the whole cavity.
+    /// [`Tets::find_cavity`] that shows each tet to `visit` as it joins the cavity (its
+    /// vertices, and for each face whether the neighbour across it joined before) and gives up
+    /// once the cavity holds more than `cap` tets or `visit` returns `false`: `None` then, with
+    /// a partial cavity pending (to be cancelled). For probes that judge a cavity tet by tet
+    /// and can give up on the first bad one, or on a huge cavity, instead of paying for it all.
     pub fn find_cavity_visit(
         &mut self,
         p: [f64; 3],
         start: TetId,
         cap: usize,
-        mut visit: impl FnMut(TetId, [VertexId; 4], [bool; 4]) -> bool,
+        mut visit: impl FnMut([VertexId; 4], [bool; 4]) -> bool,
     ) -> Option<bool> {
         self.clear_cavity();
         self.pending = true;
@@ -520,7 +513,7 @@ impl Tets {
         } = self;
         set_state(state, start as usize, IN_CAVITY);
         cavity.push(start);
-        if !visit(start, tets[start as usize].v, [false; 4]) {
+        if !visit(tets[start as usize].v, [false; 4]) {
             return None;
         }
         let mut i = 0;
@@ -546,7 +539,7 @@ impl Tets {
                             let joined = tets[u]
                                 .n
                                 .map(|h| get_state(state, (h >> 2) as usize) == IN_CAVITY);
-                            if !visit(u as TetId, tets[u].v, joined) {
+                            if !visit(tets[u].v, joined) {
                                 return None;
                             }
                             // u's neighbours are tested when u's turn comes: start loading

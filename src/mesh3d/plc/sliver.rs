@@ -76,8 +76,8 @@ const CANDIDATES: u32 = 12;
 /// 21-gon prism at -pq1.414a0.0013 ran out of rounds that way (9,109 tets, one sliver of 5.9°
 /// left); with 48 it is done in 3 rounds with 6,585 tets, and fewer points overall on the
 /// benchmark inputs (`bench/quality3d.py`). When none of the first goes in, the boundary is
-/// split without trying more: more only lowered the demand a little, and cost a third of the
-/// pass on scanned surfaces (triceratops.off `-pq`, 1.84 s before, 1.48 s after).
+/// split without trying more: more only lowered the demand a little, at 36 more probes for
+/// each such sliver (1,847 of the 4,771 slivers of triceratops.off `-pq`).
 const CANDIDATES_HARD: u32 = 48;
 
 /// Largest cavity a candidate may have (tets). A sliver's picking region can reach into the
@@ -335,7 +335,7 @@ impl Mesher<'_> {
         let (feat, pts) = (&self.feat, &self.pts);
         let found = self
             .tets
-            .find_cavity_visit(p, start, PROBE_CAP, |_, vs, joined| {
+            .find_cavity_visit(p, start, PROBE_CAP, |vs, joined| {
                 if vs.contains(&GHOST) {
                     // Outside the hull, hence outside the domain.
                     outside = true;

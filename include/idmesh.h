@@ -389,6 +389,13 @@ typedef struct idm_options2d {
    * Default 0. (Appended after 0.2.0.)
    */
   int32_t no_segment_steiner;
+  /**
+   * Threads a run may use (so far for the exact check every run ends with; the mesh and
+   * every message are the same for any count). 0: the environment variable
+   * `IDMESH_THREADS`, else all cores. Default 0. Appended after 0.2.0: a caller's older
+   * struct gets the default.
+   */
+  size_t threads;
 } idm_options2d;
 
 /**

@@ -54,6 +54,11 @@ pub struct idm_options2d {
     /// implies `no_boundary_steiner`, with the same consequences next to every segment.
     /// Default 0. (Appended after 0.2.0.)
     pub no_segment_steiner: i32,
+    /// Threads a run may use (so far for the exact check every run ends with; the mesh and
+    /// every message are the same for any count). 0: the environment variable
+    /// `IDMESH_THREADS`, else all cores. Default 0. Appended after 0.2.0: a caller's older
+    /// struct gets the default.
+    pub threads: usize,
 }
 
 /// A user sizing test (Triangle's `triunsuitable`): returns nonzero when the triangle with
@@ -163,6 +168,7 @@ unsafe impl SizedOptions for idm_options2d {
             no_boundary_steiner: d.no_boundary_steiner.into(),
             max_steiner: steiner_cap_to_c(d.max_steiner),
             no_segment_steiner: d.no_segment_steiner.into(),
+            threads: d.threads.unwrap_or(0),
         }
     }
 }
@@ -324,6 +330,7 @@ pub unsafe extern "C" fn idm_mesher2d_set_options(
                 sizing: m.opts.sizing.take(),
                 progress: m.opts.progress.take(),
                 verbose: m.opts.verbose,
+                threads: (o.threads != 0).then_some(o.threads),
             };
             Ok(())
         })
@@ -831,6 +838,32 @@ mod tests {
     struct Bigger {
         o: idm_options2d,
         tail: [u8; 16],
+    }
+
+    #[test]
+    fn the_thread_count_maps_and_an_older_struct_gets_the_default() {
+        let mut o = options(25.0, 0.0);
+        assert_eq!(o.threads, 0, "default: IDMESH_THREADS or all cores");
+        let m = Handle::new();
+        load(&m, &square_with_hole());
+        assert_eq!(unsafe { idm_mesher2d_set_options(m.0, &o) }, IDM_OK);
+        assert_eq!(unsafe { &*m.0 }.opts.threads, None);
+        o.threads = 2;
+        assert_eq!(unsafe { idm_mesher2d_set_options(m.0, &o) }, IDM_OK);
+        assert_eq!(unsafe { &*m.0 }.opts.threads, Some(2));
+        assert_eq!(
+            unsafe { idm_mesher2d_refine(m.0) },
+            IDM_OK,
+            "{}",
+            last_error()
+        );
+        o.struct_size = std::mem::offset_of!(idm_options2d, threads);
+        assert_eq!(unsafe { idm_mesher2d_set_options(m.0, &o) }, IDM_OK);
+        assert_eq!(
+            unsafe { &*m.0 }.opts.threads,
+            None,
+            "beyond the caller's struct"
+        );
     }
 
     #[test]

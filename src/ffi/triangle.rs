@@ -101,6 +101,7 @@ impl idm_triangle_switches {
                     .max_steiner
                     .map_or(-1, |n| i64::try_from(n).unwrap_or(i64::MAX)),
                 no_segment_steiner: b(o.no_segment_steiner),
+                threads: o.threads.unwrap_or(0),
             },
             poly: b(s.poly),
             user_test: b(s.user_test),

@@ -123,18 +123,20 @@ fn mesh(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
     // rule (exact, linear) always; the global empty-circle search too in debug builds and in
     // `validate()`. With fixed segments, or conformity cut short by the budget, the mesh is
     // only constrained Delaunay, and segments are exempt from the local rule.
+    let threads = crate::threads::resolve(opts.threads)?;
     let check = if r.policy != SegmentSteiner::Anywhere || !mesh.complete {
-        super::validate::validate_constrained(&mesh)
+        super::validate::validate_constrained(&mesh, threads)
     } else if cfg!(debug_assertions) {
         mesh.validate()
     } else {
-        super::validate::validate_final(&mesh)
+        super::validate::validate_final(&mesh, threads)
     };
     check.map_err(|e| Error::Internal(format!("output check failed: {e}")))?;
     Ok(mesh)
 }
 
 fn check_options(o: &Options) -> Result<(), Error> {
+    crate::threads::resolve(o.threads)?;
     if let Some(a) = o.min_angle {
         if !(a > 0.0 && a <= MAX_MIN_ANGLE) {
             return Err(Error::InvalidOption(format!(

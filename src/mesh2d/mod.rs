@@ -122,6 +122,11 @@ pub struct Options {
     pub progress: Option<crate::progress::ProgressFn>,
     /// Print progress lines to standard error during long runs. Default: `false`.
     pub verbose: bool,
+    /// Threads a run may use (so far for the exact check every run ends with; the mesh and
+    /// every message are the same for any count). `None`: the environment variable
+    /// `IDMESH_THREADS`, else all cores ([`crate::threads::count`]). Must be at least 1.
+    /// Default: `None`.
+    pub threads: Option<usize>,
 }
 
 impl Default for Options {
@@ -140,6 +145,7 @@ impl Default for Options {
             sizing: None,
             progress: None,
             verbose: false,
+            threads: None,
         }
     }
 }
@@ -160,6 +166,7 @@ impl fmt::Debug for Options {
             .field("sizing", &self.sizing.as_ref().map(|_| "<fn>"))
             .field("progress", &self.progress.as_ref().map(|_| "<fn>"))
             .field("verbose", &self.verbose)
+            .field("threads", &self.threads)
             .finish()
     }
 }

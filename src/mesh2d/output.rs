@@ -104,7 +104,7 @@ impl TriMesh {
     /// hidden behind a subsegment. Checked exactly in its equivalent local form: every edge
     /// that is not a subsegment is locally Delaunay.
     pub fn validate_constrained(&self) -> Result<(), String> {
-        super::validate::validate_constrained(self)
+        super::validate::validate_constrained(self, crate::threads::count().unwrap_or(1))
     }
 }
 

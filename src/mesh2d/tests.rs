@@ -526,3 +526,61 @@ fn tiny_coordinates_mesh_as_their_scaled_up_copy() {
     }
     mt.validate().unwrap();
 }
+
+/// The final check splits its passes over threads; what it reports must not depend on how
+/// many: the same mesh for every count, a valid mesh passes, and with faults in both halves
+/// of the triangles the first one (in triangle order) is named for every count.
+#[test]
+fn final_check_reports_the_same_for_any_thread_count() {
+    let mut o = Options::default();
+    o.min_angle = Some(30.0);
+    o.max_area = Some(2e-6);
+    o.threads = Some(1);
+    let m = triangulate(&square_with_hole(), &o).unwrap();
+    assert!(
+        m.triangles.len() > 4 << 16,
+        "{} triangles: too few for four chunks",
+        m.triangles.len()
+    );
+    for threads in [2, 3] {
+        o.threads = Some(threads);
+        let again = triangulate(&square_with_hole(), &o).unwrap();
+        assert_eq!(
+            (&again.triangles, &again.vertices),
+            (&m.triangles, &m.vertices)
+        );
+    }
+    for threads in [1, 2, 3, 4] {
+        validate::validate_final(&m, threads).unwrap();
+    }
+    let n = m.triangles.len();
+    let message = |m: &TriMesh, threads| match validate::validate_final(m, threads) {
+        Err(s) => s,
+        Ok(()) => panic!("fault not caught with {threads} threads"),
+    };
+    // Turned triangles (the structure pass), a flipped pair whose far vertices now see each
+    // other's circles (the empty-circle pass), and a subsegment that is no edge.
+    let mut turned = m.clone();
+    turned.triangles[n / 2].swap(0, 1);
+    turned.triangles[n - 1].swap(0, 1);
+    let first = message(&turned, 1);
+    assert!(first.contains(&format!("triangle {} ", n / 2)), "{first}");
+    let mut lost = m.clone();
+    lost.segments.push([0, 2]);
+    for broken in [turned, lost] {
+        let one = message(&broken, 1);
+        for threads in [2, 3, 4] {
+            assert_eq!(message(&broken, threads), one);
+        }
+    }
+}
+
+#[test]
+fn a_thread_count_of_zero_is_refused_before_the_run() {
+    let mut o = Options::default();
+    o.threads = Some(0);
+    match triangulate(&square_with_hole(), &o) {
+        Err(crate::Error::InvalidOption(m)) => assert!(m.contains("threads"), "{m}"),
+        other => panic!("{other:?}"),
+    }
+}

@@ -2,6 +2,7 @@
 //! circumcircles against every vertex, and subsegments present as edges.
 
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::kdtree::PointTree;
 use super::{TriMesh, NONE};
@@ -32,15 +33,20 @@ fn scaled_up(m: &TriMesh) -> Option<TriMesh> {
     Some(c)
 }
 
+/// The threads a check of a caller's mesh uses (`IDMESH_THREADS`, else all cores).
+fn default_threads() -> usize {
+    crate::threads::count().unwrap_or(1)
+}
+
 pub(super) fn validate(m: &TriMesh) -> Result<(), String> {
     let scaled = scaled_up(m);
     let m = scaled.as_ref().unwrap_or(m);
     if !m.complete {
         // The budget can stop the splits that make segments conforming: the guarantee of
         // an incomplete mesh is the constrained rule.
-        return validate_constrained(m);
+        return validate_constrained(m, default_threads());
     }
-    validate_structure(m, true)?;
+    validate_structure(m, true, default_threads())?;
     check_empty_circles(m, &Chains::new(m))
 }
 
@@ -133,33 +139,36 @@ impl Chains {
 /// its local form, which is equivalent for a triangulated domain bounded by segments (Lee and
 /// Lin; Chew): every edge that is not a subsegment has two triangles, and neither's far vertex
 /// lies strictly inside the other's circumcircle.
-pub(super) fn validate_constrained(m: &TriMesh) -> Result<(), String> {
+pub(super) fn validate_constrained(m: &TriMesh, threads: usize) -> Result<(), String> {
     let scaled = scaled_up(m);
-    validate_locally(scaled.as_ref().unwrap_or(m), true)
+    validate_locally(scaled.as_ref().unwrap_or(m), true, threads)
 }
 
 /// The structure, and every edge with two triangles locally Delaunay (with `skip_segments`,
 /// edges that are subsegments are exempt: the constrained rule above). Without the exemption
 /// this is the cheap exact check every conforming run ends with: it catches a kernel that
 /// lost the Delaunay property, though not a vertex seen only across a hole or the outside.
-pub(super) fn validate_locally(m: &TriMesh, skip_segments: bool) -> Result<(), String> {
-    locally_forgiving(m, skip_segments).map(|_| ())
+pub(super) fn validate_locally(
+    m: &TriMesh,
+    skip_segments: bool,
+    threads: usize,
+) -> Result<(), String> {
+    locally_forgiving(m, skip_segments, threads).map(|_| ())
 }
 
 /// The conforming run's final check: [`validate_locally`], and when it had to forgive the
 /// rounding of a chain (see [`Chains`]) the global empty-circle check as well, since the
 /// local form no longer implies it then.
-pub(super) fn validate_final(m: &TriMesh) -> Result<(), String> {
-    if locally_forgiving(m, false)? > 0 {
+pub(super) fn validate_final(m: &TriMesh, threads: usize) -> Result<(), String> {
+    if locally_forgiving(m, false, threads)? > 0 {
         check_empty_circles(m, &Chains::new(m))?;
     }
     Ok(())
 }
 
 /// [`validate_locally`], returning how many locally non-Delaunay edges the chains forgave.
-fn locally_forgiving(m: &TriMesh, skip_segments: bool) -> Result<usize, String> {
-    validate_structure(m, true)?;
-    let mut forgiven = 0;
+fn locally_forgiving(m: &TriMesh, skip_segments: bool, threads: usize) -> Result<usize, String> {
+    validate_structure(m, true, threads)?;
     let chains = Chains::new(m);
     let mut seg: HashMap<(u32, u32), ()> = HashMap::new();
     if skip_segments {
@@ -168,8 +177,9 @@ fn locally_forgiving(m: &TriMesh, skip_segments: bool) -> Result<usize, String> 
             seg.insert((e[0].min(e[1]), e[0].max(e[1])), ());
         }
     }
-    for (t, tri) in m.triangles.iter().enumerate() {
-        tick_pass(m, 3, t)?;
+    let parts = in_chunks(m, 3, threads, |t| {
+        let tri = &m.triangles[t];
+        let mut forgiven = 0;
         for i in 0..3 {
             let n = m.neighbors[t][i];
             if n == NONE || (n as usize) < t {
@@ -194,13 +204,49 @@ fn locally_forgiving(m: &TriMesh, skip_segments: bool) -> Result<usize, String> 
                 forgiven += 1;
             }
         }
+        Ok(forgiven)
+    });
+    let mut forgiven = 0;
+    for part in parts {
+        forgiven += part?;
     }
     Ok(forgiven)
 }
 
+/// Runs `check(t)` for every triangle `t`, in contiguous chunks on `threads` threads (pass
+/// `pass` of the progress reports, ticked by the first chunk; the others stop early once the
+/// first has failed), and returns each chunk's sum of results or its first error: the first
+/// error in triangle order is then the first error of the returned parts, whatever the
+/// thread count.
+fn in_chunks(
+    m: &TriMesh,
+    pass: usize,
+    threads: usize,
+    check: impl Fn(usize) -> Result<usize, String> + Sync,
+) -> Vec<Result<usize, String>> {
+    let n = m.triangles.len();
+    crate::threads::chunks(n, threads, 1 << 16, |range, stop| {
+        let first = range.start == 0;
+        let mut sum = 0;
+        for t in range {
+            if first {
+                tick_pass(m, pass, (t * threads).min(n))?;
+            } else if crate::threads::stopped(t, stop) {
+                break;
+            }
+            sum += check(t)?;
+        }
+        Ok(sum)
+    })
+}
+
 /// Everything but the empty-circle check: indices, orientation, subsegments, and with
 /// `adjacency` the neighbour table.
-pub(super) fn validate_structure(m: &TriMesh, adjacency: bool) -> Result<(), String> {
+pub(super) fn validate_structure(
+    m: &TriMesh,
+    adjacency: bool,
+    threads: usize,
+) -> Result<(), String> {
     let nv = m.vertices.len();
     let nt = m.triangles.len();
     if m.neighbors.len() != nt {
@@ -221,8 +267,8 @@ pub(super) fn validate_structure(m: &TriMesh, adjacency: bool) -> Result<(), Str
             m.triangle_attributes.len()
         ));
     }
-    for (t, tri) in m.triangles.iter().enumerate() {
-        tick_pass(m, 0, t)?;
+    let parts = in_chunks(m, 0, threads, |t| {
+        let tri = &m.triangles[t];
         if tri.iter().any(|&v| v as usize >= nv) {
             return Err(format!("triangle {t} has a vertex index out of range"));
         }
@@ -250,6 +296,10 @@ pub(super) fn validate_structure(m: &TriMesh, adjacency: bool) -> Result<(), Str
                 ));
             }
         }
+        Ok(0)
+    });
+    for part in parts {
+        part?;
     }
     // Hash the (few) subsegments, not the (many) edges: then one pass over the triangles marks
     // which subsegments are edges.
@@ -257,43 +307,40 @@ pub(super) fn validate_structure(m: &TriMesh, adjacency: bool) -> Result<(), Str
     for (s, e) in m.segments.iter().enumerate() {
         wanted.insert((e[0].min(e[1]), e[0].max(e[1])), s);
     }
-    // Every boundary edge (no neighbour) must be a subsegment: the domain is bounded by segments.
-    for (t, tri) in m.triangles.iter().enumerate() {
-        tick_pass(m, 1, t)?;
+    // Only edges between two subsegment endpoints can be subsegments: skip the hashing for
+    // every other edge.
+    let mut endpoint = vec![false; nv];
+    for e in &m.segments {
+        endpoint[e[0] as usize] = true;
+        endpoint[e[1] as usize] = true;
+    }
+    let marks: Vec<AtomicBool> = (0..m.segments.len())
+        .map(|_| AtomicBool::new(false))
+        .collect();
+    // Every boundary edge (no neighbour) must be a subsegment: the domain is bounded by
+    // segments. In the same pass, mark the subsegments that are edges.
+    let parts = in_chunks(m, 1, threads, |t| {
+        let tri = &m.triangles[t];
         for i in 0..3 {
-            if m.neighbors[t][i] != NONE {
-                continue;
-            }
             let (p, q) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
-            if !wanted.contains_key(&(p.min(q), p.max(q))) {
+            if m.neighbors[t][i] == NONE && !wanted.contains_key(&(p.min(q), p.max(q))) {
                 return Err(format!(
                     "boundary edge ({p}, {q}) of triangle {t} is on no segment"
                 ));
             }
-        }
-    }
-    let mut found = vec![false; m.segments.len()];
-    if !wanted.is_empty() {
-        // Only edges between two subsegment endpoints can be subsegments: skip the hashing
-        // for every other edge.
-        let mut endpoint = vec![false; nv];
-        for e in &m.segments {
-            endpoint[e[0] as usize] = true;
-            endpoint[e[1] as usize] = true;
-        }
-        for (t, tri) in m.triangles.iter().enumerate() {
-            tick_pass(m, 2, t)?;
-            for i in 0..3 {
-                let (p, q) = (tri[i], tri[(i + 1) % 3]);
-                if !(endpoint[p as usize] && endpoint[q as usize]) {
-                    continue;
-                }
-                if let Some(&s) = wanted.get(&(p.min(q), p.max(q))) {
-                    found[s] = true;
-                }
+            if !(endpoint[p as usize] && endpoint[q as usize]) {
+                continue;
+            }
+            if let Some(&s) = wanted.get(&(p.min(q), p.max(q))) {
+                marks[s].store(true, Ordering::Relaxed);
             }
         }
+        Ok(0)
+    });
+    for part in parts {
+        part?;
     }
+    let found: Vec<bool> = marks.into_iter().map(AtomicBool::into_inner).collect();
     if let Some(s) = found.iter().position(|f| !f) {
         let e = m.segments[s];
         return Err(format!(

@@ -567,7 +567,10 @@ fn final_check_reports_the_same_for_any_thread_count() {
     assert!(first.contains(&format!("triangle {} ", n / 2)), "{first}");
     let mut lost = m.clone();
     lost.segments.push([0, 2]);
-    for broken in [turned, lost] {
+    let flipped = flip_an_edge(&m, 3 * n / 4);
+    let flip_message = message(&flipped, 1);
+    assert!(flip_message.contains("circumcircle"), "{flip_message}");
+    for broken in [turned, lost, flipped] {
         let one = message(&broken, 1);
         for threads in [2, 3, 4] {
             assert_eq!(message(&broken, threads), one);
@@ -583,4 +586,49 @@ fn a_thread_count_of_zero_is_refused_before_the_run() {
         Err(crate::Error::InvalidOption(m)) => assert!(m.contains("threads"), "{m}"),
         other => panic!("{other:?}"),
     }
+}
+
+/// `m` with the first edge of a triangle from `from` on flipped to the other diagonal of its
+/// convex, not cocircular quadrilateral: a valid structure that is not Delaunay.
+fn flip_an_edge(m: &TriMesh, from: usize) -> TriMesh {
+    use crate::predicates::{incircle, orient2d};
+    let mut f = m.clone();
+    let p = |v: u32| m.vertices[v as usize];
+    for t in from..m.triangles.len() {
+        for i in 0..3 {
+            let n = m.neighbors[t][i];
+            if n == NONE || (n as usize) < t {
+                continue;
+            }
+            let n = n as usize;
+            let tri = m.triangles[t];
+            let (x, a, b) = (tri[i], tri[(i + 1) % 3], tri[(i + 2) % 3]);
+            let j = (0..3).find(|&j| m.neighbors[n][j] == t as u32).unwrap();
+            let y = m.triangles[n][j];
+            if orient2d(p(x), p(a), p(y)) <= 0.0
+                || orient2d(p(y), p(b), p(x)) <= 0.0
+                || incircle(p(x), p(a), p(b), p(y)) == 0.0
+            {
+                continue;
+            }
+            let (outer_a, outer_b) = (m.neighbors[t][(i + 1) % 3], m.neighbors[t][(i + 2) % 3]);
+            let (outer_c, outer_d) = (m.neighbors[n][(j + 1) % 3], m.neighbors[n][(j + 2) % 3]);
+            f.triangles[t] = [x, a, y];
+            f.neighbors[t] = [outer_c, n as u32, outer_b];
+            f.triangles[n] = [y, b, x];
+            f.neighbors[n] = [outer_a, t as u32, outer_d];
+            for (outer, old, new) in [(outer_a, t, n), (outer_c, n, t)] {
+                if outer != NONE {
+                    for k in 0..3 {
+                        if f.neighbors[outer as usize][k] == old as u32 {
+                            f.neighbors[outer as usize][k] = new as u32;
+                        }
+                    }
+                }
+            }
+            validate::validate_structure(&f, true, 1).unwrap();
+            return f;
+        }
+    }
+    panic!("no edge to flip");
 }

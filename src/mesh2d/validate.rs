@@ -167,48 +167,79 @@ pub(super) fn validate_final(m: &TriMesh, threads: usize) -> Result<(), String> 
 }
 
 /// [`validate_locally`], returning how many locally non-Delaunay edges the chains forgave.
+///
+/// The structure checks and the local rule run in one pass over the triangles (on a mesh
+/// that passes, as every mesh a run hands back does, each triangle is read once). When that
+/// pass finds a fault, the checks run again one after the other, so that the fault reported
+/// is the one [`validate_structure`] and then the local rule name first, whatever the thread
+/// count.
 fn locally_forgiving(m: &TriMesh, skip_segments: bool, threads: usize) -> Result<usize, String> {
-    validate_structure(m, true, threads)?;
+    check_lengths(m)?;
     let chains = Chains::new(m);
-    let mut seg: HashMap<(u32, u32), ()> = HashMap::new();
-    if skip_segments {
-        seg.reserve(m.segments.len());
-        for e in &m.segments {
-            seg.insert((e[0].min(e[1]), e[0].max(e[1])), ());
-        }
-    }
-    let parts = in_chunks(m, 3, threads, |t| {
-        let tri = &m.triangles[t];
-        let mut forgiven = 0;
-        for i in 0..3 {
-            let n = m.neighbors[t][i];
-            if n == NONE || (n as usize) < t {
-                continue;
-            }
-            let (p, q) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
-            if seg.contains_key(&(p.min(q), p.max(q))) {
-                continue;
-            }
-            let other = m.triangles[n as usize];
-            let Some(far) = other.iter().copied().find(|&v| v != p && v != q) else {
-                return Err(format!("triangles {t} and {n} share all their vertices"));
-            };
-            let [a, b, c] = tri.map(|v| m.vertices[v as usize]);
-            if incircle_fast(a, b, c, m.vertices[far as usize]) > 0.0 {
-                if !chains.forgives(*tri, far) {
-                    return Err(format!(
-                        "vertex {far} lies inside the circumcircle of triangle {t} across \
-                         edge ({p}, {q})"
-                    ));
-                }
-                forgiven += 1;
-            }
-        }
-        Ok(forgiven)
+    let segs = SegmentIndex::new(m);
+    let skip = |p: u32, q: u32| skip_segments && segs.wanted.contains_key(&(p.min(q), p.max(q)));
+    let fused = in_chunks(m, 0, threads, |t| {
+        triangle_structure(m, t, true)?;
+        segs.visit(m, t)?;
+        local_rule(m, t, &skip, &chains)
     });
+    let fused: Result<usize, String> = fused.into_iter().sum();
+    if let (Ok(forgiven), None) = (&fused, segs.missing(m)) {
+        return Ok(*forgiven);
+    }
+    validate_structure(m, true, threads)?;
+    let parts = in_chunks(m, 3, threads, |t| local_rule(m, t, &skip, &chains));
+    parts.into_iter().sum::<Result<usize, String>>()?;
+    // Not reached: a fault of the fused pass is found again by the passes one at a time.
+    fused
+}
+
+/// The local empty-circle rule at triangle `t`: across each edge to a later neighbour that
+/// `skip` does not exempt, the neighbour's far vertex is not strictly inside `t`'s
+/// circumcircle, unless the chains forgive it ([`Chains`]); returns how many they forgave.
+/// Indices are checked (the neighbour's structure may not have been checked yet).
+fn local_rule(
+    m: &TriMesh,
+    t: usize,
+    skip: &impl Fn(u32, u32) -> bool,
+    chains: &Chains,
+) -> Result<usize, String> {
+    let tri = &m.triangles[t];
     let mut forgiven = 0;
-    for part in parts {
-        forgiven += part?;
+    for i in 0..3 {
+        let n = m.neighbors[t][i];
+        if n == NONE || (n as usize) < t {
+            continue;
+        }
+        let (p, q) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+        if skip(p, q) {
+            continue;
+        }
+        let Some(other) = m.triangles.get(n as usize) else {
+            return Err(format!("triangle {t} has neighbour {n} out of range"));
+        };
+        let Some(far) = other.iter().copied().find(|&v| v != p && v != q) else {
+            return Err(format!("triangles {t} and {n} share all their vertices"));
+        };
+        let (Some(&d), Some(a), Some(b), Some(c)) = (
+            m.vertices.get(far as usize),
+            m.vertices.get(tri[0] as usize),
+            m.vertices.get(tri[1] as usize),
+            m.vertices.get(tri[2] as usize),
+        ) else {
+            return Err(format!(
+                "triangle {t} or {n} has a vertex index out of range"
+            ));
+        };
+        if incircle_fast(*a, *b, *c, d) > 0.0 {
+            if !chains.forgives(*tri, far) {
+                return Err(format!(
+                    "vertex {far} lies inside the circumcircle of triangle {t} across \
+                     edge ({p}, {q})"
+                ));
+            }
+            forgiven += 1;
+        }
     }
     Ok(forgiven)
 }
@@ -240,13 +271,8 @@ fn in_chunks(
     })
 }
 
-/// Everything but the empty-circle check: indices, orientation, subsegments, and with
-/// `adjacency` the neighbour table.
-pub(super) fn validate_structure(
-    m: &TriMesh,
-    adjacency: bool,
-    threads: usize,
-) -> Result<(), String> {
+/// The lengths of the per-vertex and per-triangle tables.
+fn check_lengths(m: &TriMesh) -> Result<(), String> {
     let nv = m.vertices.len();
     let nt = m.triangles.len();
     if m.neighbors.len() != nt {
@@ -267,88 +293,125 @@ pub(super) fn validate_structure(
             m.triangle_attributes.len()
         ));
     }
-    let parts = in_chunks(m, 0, threads, |t| {
+    Ok(())
+}
+
+/// Triangle `t`'s indices and orientation, and with `adjacency` its neighbours: in range,
+/// mutual, sharing the edge.
+fn triangle_structure(m: &TriMesh, t: usize, adjacency: bool) -> Result<usize, String> {
+    let (nv, nt) = (m.vertices.len(), m.triangles.len());
+    let tri = &m.triangles[t];
+    if tri.iter().any(|&v| v as usize >= nv) {
+        return Err(format!("triangle {t} has a vertex index out of range"));
+    }
+    let [a, b, c] = tri.map(|v| m.vertices[v as usize]);
+    if orient2d(a, b, c) <= 0.0 {
+        return Err(format!("triangle {t} is not strictly counter-clockwise"));
+    }
+    for i in 0..3 {
+        let n = m.neighbors[t][i];
+        if n == NONE || !adjacency {
+            continue;
+        }
+        if n as usize >= nt {
+            return Err(format!("triangle {t} has neighbour {n} out of range"));
+        }
+        let (p, q) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+        let other = m.triangles[n as usize];
+        let back = (0..3).find(|&j| m.neighbors[n as usize][j] == t as u32);
+        let Some(j) = back else {
+            return Err(format!("triangles {t} and {n} are not mutual neighbours"));
+        };
+        if other[(j + 1) % 3] != q || other[(j + 2) % 3] != p {
+            return Err(format!(
+                "triangles {t} and {n} do not share the edge ({p}, {q})"
+            ));
+        }
+    }
+    Ok(0)
+}
+
+/// The subsegments, hashed (the few, not the many edges), to check that every boundary edge
+/// is one and to mark which are edges in one pass over the triangles.
+struct SegmentIndex {
+    wanted: HashMap<(u32, u32), usize>,
+    /// Whether each vertex ends a subsegment: only edges between two such can be one.
+    endpoint: Vec<bool>,
+    marks: Vec<AtomicBool>,
+}
+
+impl SegmentIndex {
+    fn new(m: &TriMesh) -> SegmentIndex {
+        let mut wanted = HashMap::with_capacity(m.segments.len());
+        let mut endpoint = vec![false; m.vertices.len()];
+        for (s, e) in m.segments.iter().enumerate() {
+            wanted.insert((e[0].min(e[1]), e[0].max(e[1])), s);
+            for v in *e {
+                if let Some(x) = endpoint.get_mut(v as usize) {
+                    *x = true;
+                }
+            }
+        }
+        let marks = (0..m.segments.len())
+            .map(|_| AtomicBool::new(false))
+            .collect();
+        SegmentIndex {
+            wanted,
+            endpoint,
+            marks,
+        }
+    }
+
+    /// Triangle `t`: each edge without a neighbour must be a subsegment (the domain is bounded
+    /// by segments); marks the subsegments among its edges. Vertex indices in range.
+    fn visit(&self, m: &TriMesh, t: usize) -> Result<usize, String> {
         let tri = &m.triangles[t];
-        if tri.iter().any(|&v| v as usize >= nv) {
-            return Err(format!("triangle {t} has a vertex index out of range"));
-        }
-        let [a, b, c] = tri.map(|v| m.vertices[v as usize]);
-        if orient2d(a, b, c) <= 0.0 {
-            return Err(format!("triangle {t} is not strictly counter-clockwise"));
-        }
-        for i in 0..3 {
-            let n = m.neighbors[t][i];
-            if n == NONE || !adjacency {
-                continue;
-            }
-            if n as usize >= nt {
-                return Err(format!("triangle {t} has neighbour {n} out of range"));
-            }
-            let (p, q) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
-            let other = m.triangles[n as usize];
-            let back = (0..3).find(|&j| m.neighbors[n as usize][j] == t as u32);
-            let Some(j) = back else {
-                return Err(format!("triangles {t} and {n} are not mutual neighbours"));
-            };
-            if other[(j + 1) % 3] != q || other[(j + 2) % 3] != p {
-                return Err(format!(
-                    "triangles {t} and {n} do not share the edge ({p}, {q})"
-                ));
-            }
-        }
-        Ok(0)
-    });
-    for part in parts {
-        part?;
-    }
-    // Hash the (few) subsegments, not the (many) edges: then one pass over the triangles marks
-    // which subsegments are edges.
-    let mut wanted: HashMap<(u32, u32), usize> = HashMap::with_capacity(m.segments.len());
-    for (s, e) in m.segments.iter().enumerate() {
-        wanted.insert((e[0].min(e[1]), e[0].max(e[1])), s);
-    }
-    // Only edges between two subsegment endpoints can be subsegments: skip the hashing for
-    // every other edge.
-    let mut endpoint = vec![false; nv];
-    for e in &m.segments {
-        endpoint[e[0] as usize] = true;
-        endpoint[e[1] as usize] = true;
-    }
-    let marks: Vec<AtomicBool> = (0..m.segments.len())
-        .map(|_| AtomicBool::new(false))
-        .collect();
-    // Every boundary edge (no neighbour) must be a subsegment: the domain is bounded by
-    // segments. In the same pass, mark the subsegments that are edges.
-    let parts = in_chunks(m, 1, threads, |t| {
-        let tri = &m.triangles[t];
         for i in 0..3 {
             let (p, q) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
-            if m.neighbors[t][i] == NONE && !wanted.contains_key(&(p.min(q), p.max(q))) {
+            let key = (p.min(q), p.max(q));
+            if m.neighbors[t][i] == NONE && !self.wanted.contains_key(&key) {
                 return Err(format!(
                     "boundary edge ({p}, {q}) of triangle {t} is on no segment"
                 ));
             }
-            if !(endpoint[p as usize] && endpoint[q as usize]) {
+            if !(self.endpoint[p as usize] && self.endpoint[q as usize]) {
                 continue;
             }
-            if let Some(&s) = wanted.get(&(p.min(q), p.max(q))) {
-                marks[s].store(true, Ordering::Relaxed);
+            if let Some(&s) = self.wanted.get(&key) {
+                self.marks[s].store(true, Ordering::Relaxed);
             }
         }
         Ok(0)
-    });
-    for part in parts {
-        part?;
     }
-    let found: Vec<bool> = marks.into_iter().map(AtomicBool::into_inner).collect();
-    if let Some(s) = found.iter().position(|f| !f) {
+
+    /// The first subsegment no visited triangle had as an edge, as an error.
+    fn missing(&self, m: &TriMesh) -> Option<String> {
+        let s = self.marks.iter().position(|f| !f.load(Ordering::Relaxed))?;
         let e = m.segments[s];
-        return Err(format!(
+        Some(format!(
             "subsegment {s} ({}, {}) is not a mesh edge",
             e[0], e[1]
-        ));
+        ))
     }
-    Ok(())
+}
+
+/// Everything but the empty-circle check: indices, orientation, subsegments, and with
+/// `adjacency` the neighbour table.
+pub(super) fn validate_structure(
+    m: &TriMesh,
+    adjacency: bool,
+    threads: usize,
+) -> Result<(), String> {
+    check_lengths(m)?;
+    let parts = in_chunks(m, 0, threads, |t| triangle_structure(m, t, adjacency));
+    parts.into_iter().sum::<Result<usize, String>>()?;
+    let segs = SegmentIndex::new(m);
+    let parts = in_chunks(m, 1, threads, |t| segs.visit(m, t));
+    parts.into_iter().sum::<Result<usize, String>>()?;
+    match segs.missing(m) {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
 }
 
 /// Every triangle's open circumdisk must hold no vertex. Candidates come from a k-d tree over

@@ -21,6 +21,94 @@ pub(crate) struct Records<'a> {
     line_no: usize,
 }
 
+/// Vertex lines of a `.node` section (`<#> <D coordinates> [attributes] [marker]`) as read,
+/// in file order: for Triangle's files `D` = 2, for TetGen's 3.
+#[derive(Default)]
+pub(crate) struct VertexRows<const D: usize> {
+    pub points: Vec<[f64; D]>,
+    pub attributes: Vec<f64>,
+    pub markers: Vec<i32>,
+}
+
+impl<const D: usize> VertexRows<D> {
+    /// Reads one vertex line with `na` attributes, and a marker when `markers`.
+    pub fn push(&mut self, rec: &Record<'_>, na: usize, markers: bool) -> Result<(), ParseError> {
+        const WHAT: [&str; 3] = ["x coordinate", "y coordinate", "z coordinate"];
+        let mut p = [0.0; D];
+        for (k, x) in p.iter_mut().enumerate() {
+            *x = rec.f64(1 + k, WHAT[k])?;
+        }
+        self.points.push(p);
+        for a in 0..na {
+            self.attributes
+                .push(rec.opt_f64(1 + D + a, "attribute")?.unwrap_or(0.0));
+        }
+        if markers {
+            self.markers
+                .push(rec.marker(1 + D + na, "boundary marker")?.unwrap_or(0));
+        }
+        Ok(())
+    }
+
+    /// Appends `other`'s rows after these.
+    pub fn append(&mut self, mut other: VertexRows<D>) {
+        self.points.append(&mut other.points);
+        self.attributes.append(&mut other.attributes);
+        self.markers.append(&mut other.markers);
+    }
+
+    /// Reads the `n` vertex lines after the header `rec` (which holds the header on entry),
+    /// each with `na` attributes and a marker when `markers`. The first line's number fixes
+    /// the numbering base (`base_of`, as each tool decides it), which names the vertices in
+    /// messages. With `rest` the vertices are the rest of the file (a `.node` file), and a big
+    /// one is read on all threads ([`Records::rest_in_parts`]).
+    #[allow(clippy::too_many_arguments)]
+    pub fn read<'a>(
+        recs: &mut Records<'a>,
+        rec: &mut Record<'a>,
+        n: usize,
+        na: usize,
+        markers: bool,
+        text: &str,
+        rest: bool,
+        base_of: impl Fn(i64) -> u32,
+    ) -> Result<(Self, u32), ParseError> {
+        check_attribute_count(rec, n, na, text)?;
+        let mut rows = VertexRows::<D> {
+            points: Vec::with_capacity(capacity(n, text)),
+            attributes: Vec::with_capacity(capacity(n.saturating_mul(na), text)),
+            markers: Vec::with_capacity(if markers { capacity(n, text) } else { 0 }),
+        };
+        let mut base = 0;
+        for k in 0..n {
+            recs.require(rec, || format!("vertex {} of {n}", k + 1))?;
+            if k == 0 {
+                base = base_of(rec.int(0, "vertex number")?);
+            }
+            rec.item = Some(("vertex", base as i64 + k as i64));
+            rows.push(rec, na, markers)?;
+            if k == 0 && rest {
+                let threads = crate::threads::count().unwrap_or(1);
+                let parts = recs.rest_in_parts(n - 1, threads, |r, part: &mut VertexRows<D>| {
+                    part.push(r, na, markers)
+                });
+                if let Some(parts) = parts {
+                    for part in parts {
+                        rows.append(part);
+                    }
+                    recs.skip_to_end();
+                    break;
+                }
+            }
+        }
+        Ok((rows, base))
+    }
+}
+
+/// The size of text from which [`Records::rest_in_parts`] splits the work (a million-point
+/// `.node` file is about 45 MB; below a few megabytes the threads cost more than they save).
+pub(crate) const PARALLEL_BYTES: usize = 4 << 20;
+
 /// One record: its 1-based line number and its whitespace-separated fields.
 ///
 /// `item` names what the record describes (for example `("vertex", 3)`, numbered as in the
@@ -163,6 +251,76 @@ impl<'a> Records<'a> {
             self.line_no.max(1),
             format!("unexpected end of file: expected {expected}"),
         )
+    }
+
+    /// The records after the last one read, parsed on `threads` threads when the rest of the
+    /// text is big (at least [`PARALLEL_BYTES`]) and more than one thread is allowed: it is
+    /// cut at line feeds into one part per thread, `parse` reads each record of a part into
+    /// that part's `T`, and the parts come back in file order. For the rest of a file whose
+    /// every remaining record is of one kind (the vertex lines of a `.node` file). `None`
+    /// when the text is small, when a record fails, or when the records are not `expected`
+    /// in all: the caller then reads them one by one as before, which names any error with
+    /// its line (here nothing is reported, and nothing is consumed).
+    pub fn rest_in_parts<T: Default + Send>(
+        &self,
+        expected: usize,
+        threads: usize,
+        parse: impl Fn(&Record<'a>, &mut T) -> Result<(), ParseError> + Sync,
+    ) -> Option<Vec<T>> {
+        let bytes = self.text.as_bytes();
+        let (start, end) = (self.pos, bytes.len());
+        if threads < 2 || end - start < PARALLEL_BYTES {
+            return None;
+        }
+        // Part boundaries: just after the first line feed at or past each even cut.
+        let mut cuts = vec![start];
+        for k in 1..threads {
+            let at = start + (end - start) * k / threads;
+            let cut = match bytes[at..].iter().position(|&b| b == b'\n') {
+                Some(i) => at + i + 1,
+                None => end,
+            };
+            cuts.push(cut.max(*cuts.last().expect("start")));
+        }
+        cuts.push(end);
+        let parts = crate::threads::chunks(threads, threads, 1, |range, stop| {
+            let mut out = Vec::new();
+            for k in range {
+                // Each part is a tokenizer over the text up to its end, from its start.
+                let mut recs = Records {
+                    file: self.file,
+                    text: &self.text[..cuts[k + 1]],
+                    pos: cuts[k],
+                    line_no: 0,
+                };
+                let mut rec = recs.record();
+                let mut part = T::default();
+                let mut count = 0usize;
+                while recs.next_into(&mut rec) {
+                    if crate::threads::stopped(count, stop) {
+                        return Err(());
+                    }
+                    parse(&rec, &mut part).map_err(|_| ())?;
+                    count += 1;
+                }
+                out.push((part, count));
+            }
+            Ok(out)
+        });
+        let mut all = Vec::with_capacity(threads);
+        let mut total = 0;
+        for part in parts {
+            for (t, count) in part.ok()? {
+                total += count;
+                all.push(t);
+            }
+        }
+        (total == expected).then_some(all)
+    }
+
+    /// Marks the whole text read (after [`Records::rest_in_parts`] took the rest).
+    pub fn skip_to_end(&mut self) {
+        self.pos = self.text.len();
     }
 
     /// An empty record to pass to [`Records::next_into`].
@@ -594,6 +752,53 @@ mod tests {
         assert_eq!(parse_int("3.5"), None);
         assert_eq!(parse_int("x"), None);
         assert_eq!(parse_int("1e300"), None);
+    }
+
+    #[test]
+    fn rest_in_parts_gives_the_records_in_order_for_any_thread_count() {
+        let mut text = String::from("header\n");
+        let n = 400_000;
+        for i in 0..n {
+            text.push_str(&format!(
+                "{i} {}.5{}",
+                i * 3,
+                if i % 9 == 0 { " # c\n\n" } else { "\n" }
+            ));
+        }
+        assert!(text.len() > PARALLEL_BYTES);
+        let mut recs = Records::new(&text, "t");
+        let mut rec = recs.record();
+        assert!(recs.next_into(&mut rec));
+        let read = |r: &Record<'_>, out: &mut Vec<f64>| {
+            out.push(r.f64(1, "value")?);
+            Ok(())
+        };
+        assert!(
+            recs.rest_in_parts(n, 1, read).is_none(),
+            "one thread: line by line"
+        );
+        for threads in [2, 3, 4, 7] {
+            let parts = recs.rest_in_parts(n, threads, read).unwrap();
+            assert_eq!(parts.len(), threads);
+            let all: Vec<f64> = parts.into_iter().flatten().collect();
+            assert_eq!(all.len(), n);
+            assert!(all
+                .iter()
+                .enumerate()
+                .all(|(i, &x)| x == (i * 3) as f64 + 0.5));
+            assert!(
+                recs.rest_in_parts(n + 1, threads, read).is_none(),
+                "a count off"
+            );
+        }
+        // A bad record anywhere: no parts (the caller reads line by line and names it).
+        let bad = text.replacen("\n399990 ", "\n399990 x", 1);
+        let mut recs = Records::new(&bad, "t");
+        assert!(recs.next_into(&mut rec));
+        assert!(recs.rest_in_parts(n, 2, read).is_none());
+        // Nothing was consumed.
+        assert!(recs.next_into(&mut rec));
+        assert_eq!(rec.fields[0], "0");
     }
 
     #[test]

@@ -21,7 +21,7 @@
 use std::path::Path;
 
 use super::error::ParseError;
-use super::lines::{capacity, check_attribute_count, read_text, Record, Records};
+use super::lines::{capacity, check_attribute_count, read_text, Record, Records, VertexRows};
 use super::tetgen_input::TetgenInput;
 use crate::input3d::{Facet, Plc, Region3};
 use crate::mesh3d::NONE;
@@ -89,12 +89,15 @@ fn parse_header(rec: &Record<'_>, what: &str) -> Result<Header, ParseError> {
     })
 }
 
-/// Reads the vertex lines announced by `header` into a fresh input.
+/// Reads the vertex lines announced by `header` into a fresh input. With `rest` they are the
+/// rest of the file (a `.node` file), and a big one is read on all threads
+/// ([`Records::rest_in_parts`]).
 fn read_vertices<'a>(
     recs: &mut Records<'a>,
     rec: &mut Record<'a>,
     header: &Header,
     text: &str,
+    rest: bool,
 ) -> Result<TetgenInput, ParseError> {
     let n = header.count;
     if n >= NONE as usize {
@@ -104,40 +107,20 @@ fn read_vertices<'a>(
         )));
     }
     let na = header.num_attributes;
-    check_attribute_count(rec, n, na, text)?;
-    let mut points = Vec::with_capacity(capacity(n, text));
-    let mut markers = Vec::with_capacity(if header.markers { capacity(n, text) } else { 0 });
-    let mut attributes = Vec::with_capacity(capacity(n.saturating_mul(na), text));
-    let mut base = 0u32;
-    for k in 0..n {
-        recs.require(rec, || format!("vertex {} of {n}", k + 1))?;
-        if k == 0 {
-            base = match rec.int(0, "vertex number")? {
-                1 => 1,
-                _ => 0,
-            };
-        }
-        rec.item = Some(("vertex", base as i64 + k as i64));
-        let x = rec.f64(1, "x coordinate")?;
-        let y = rec.f64(2, "y coordinate")?;
-        let z = rec.f64(3, "z coordinate")?;
-        points.push([x, y, z]);
-        for a in 0..na {
-            attributes.push(rec.opt_f64(4 + a, "attribute")?.unwrap_or(0.0));
-        }
-        if header.markers {
-            markers.push(rec.marker(4 + na, "boundary marker")?.unwrap_or(0));
-        }
-    }
+    // TetGen numbers from 1 only when the first vertex is numbered 1.
+    let (rows, base) =
+        VertexRows::<3>::read(recs, rec, n, na, header.markers, text, rest, |first| {
+            u32::from(first == 1)
+        })?;
     Ok(TetgenInput {
         plc: Plc {
-            points,
-            point_markers: markers,
+            points: rows.points,
+            point_markers: rows.markers,
             ..Plc::default()
         },
         base,
         num_point_attributes: na,
-        point_attributes: attributes,
+        point_attributes: rows.attributes,
         ..TetgenInput::default()
     })
 }
@@ -179,7 +162,7 @@ pub fn parse_node(text: &str, file: &str) -> Result<TetgenInput, ParseError> {
         "the header line '<#vertices> 3 <#attributes> <#markers>'".into()
     })?;
     let header = parse_header(&rec, "the .node header")?;
-    let input = read_vertices(&mut recs, &mut rec, &header, text)?;
+    let input = read_vertices(&mut recs, &mut rec, &header, text, true)?;
     expect_end(&mut recs, &mut rec, "the vertices declared in the header")?;
     Ok(input)
 }
@@ -228,7 +211,7 @@ fn parse_plc(
     let mut input = if header.count == 0 {
         load_node()?
     } else {
-        read_vertices(&mut recs, &mut rec, &header, text)?
+        read_vertices(&mut recs, &mut rec, &header, text, false)?
     };
     // TetGen reads a file that stops after the vertices as a bare point set.
     if !recs.next_into(&mut rec) {

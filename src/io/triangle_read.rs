@@ -15,7 +15,7 @@
 use std::path::Path;
 
 use super::error::ParseError;
-use super::lines::{capacity, check_attribute_count, read_text, Record, Records};
+use super::lines::{capacity, check_attribute_count, read_text, Record, Records, VertexRows};
 use crate::input2d::{Pslg, Region};
 
 /// The contents of a Triangle `.node` or `.poly` file.
@@ -98,12 +98,14 @@ fn parse_header(rec: &Record<'_>, what: &str) -> Result<Header, ParseError> {
     })
 }
 
-/// Reads the vertex lines announced by `header`.
+/// Reads the vertex lines announced by `header`. With `rest` they are the rest of the file
+/// (a `.node` file), and a big one is read on all threads ([`Records::rest_in_parts`]).
 fn read_vertices<'a>(
     recs: &mut Records<'a>,
     rec: &mut Record<'a>,
     header: &Header,
     text: &str,
+    rest: bool,
 ) -> Result<Vertices, ParseError> {
     let n = header.count;
     if u32::try_from(n).is_err() {
@@ -113,35 +115,17 @@ fn read_vertices<'a>(
         )));
     }
     let na = header.num_attributes;
-    check_attribute_count(rec, n, na, text)?;
-    let mut points = Vec::with_capacity(capacity(n, text));
-    let mut markers = header
-        .markers
-        .then(|| Vec::with_capacity(capacity(n, text)));
-    let mut attributes = Vec::with_capacity(capacity(n.saturating_mul(na), text));
-    let mut base: u32 = 1;
-    for k in 0..n {
-        recs.require(rec, || format!("vertex {} of {n}", k + 1))?;
-        if k == 0 {
-            let first = rec.int(0, "vertex number")?;
-            base = if first == 0 { 0 } else { 1 };
-        }
-        rec.item = Some(("vertex", base as i64 + k as i64));
-        let x = rec.f64(1, "x coordinate")?;
-        let y = rec.f64(2, "y coordinate")?;
-        points.push([x, y]);
-        for a in 0..na {
-            attributes.push(rec.opt_f64(3 + a, "attribute")?.unwrap_or(0.0));
-        }
-        if let Some(m) = markers.as_mut() {
-            m.push(rec.marker(3 + na, "boundary marker")?.unwrap_or(0));
-        }
-    }
+    let with_markers = header.markers;
+    // Triangle numbers from 0 only when the first vertex is numbered 0.
+    let (rows, base) =
+        VertexRows::<2>::read(recs, rec, n, na, with_markers, text, rest, |first| {
+            u32::from(first != 0)
+        })?;
     Ok(Vertices {
-        points,
-        markers,
+        points: rows.points,
+        markers: with_markers.then_some(rows.markers),
         num_attributes: na,
-        attributes,
+        attributes: rows.attributes,
         base,
     })
 }
@@ -167,7 +151,7 @@ pub fn parse_node(text: &str, file: &str) -> Result<TriangleInput, ParseError> {
         "the header line '<#vertices> 2 <#attributes> <#markers>'".into()
     })?;
     let header = parse_header(&rec, "the .node header")?;
-    let vertices = read_vertices(&mut recs, &mut rec, &header, text)?;
+    let vertices = read_vertices(&mut recs, &mut rec, &header, text, true)?;
     expect_end(&mut recs, &mut rec, "the vertices declared in the header")?;
     Ok(vertices.into_input())
 }
@@ -188,7 +172,7 @@ pub fn parse_poly(
     let mut input = if header.count == 0 {
         load_node()?
     } else {
-        read_vertices(&mut recs, &mut rec, &header, text)?.into_input()
+        read_vertices(&mut recs, &mut rec, &header, text, false)?.into_input()
     };
     let base = input.base;
     let nv = input.pslg.points.len();
@@ -375,6 +359,60 @@ pub fn read_poly(path: &Path) -> Result<TriangleInput, ParseError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A `.node` text of `n` vertices with attributes and markers, comments, blank lines and
+    /// CRLF line ends mixed in; big enough for the parallel read.
+    fn big_node(n: usize) -> String {
+        let mut t = format!("{n} 2 1 1\n");
+        for i in 0..n {
+            let (x, y) = (
+                (i as f64 * 0.618).fract(),
+                (i as f64 * 0.377).fract() * 1e-3,
+            );
+            t.push_str(&format!("{i} {x:?} {y:e} {} {}", i % 7, i % 3));
+            t.push_str(match i % 5 {
+                0 => "  # comment\n",
+                1 => "\r\n",
+                2 => "\n\n",
+                _ => "\n",
+            });
+        }
+        t
+    }
+
+    #[test]
+    fn a_big_node_file_reads_as_line_by_line() {
+        let n = 150_000;
+        let text = big_node(n);
+        assert!(text.len() > crate::io::lines::PARALLEL_BYTES);
+        let got = parse_node(&text, "big.node").unwrap();
+        assert_eq!(got.pslg.points.len(), n);
+        assert_eq!(got.base, 0);
+        for (i, p) in got.pslg.points.iter().enumerate() {
+            assert_eq!(p[0], (i as f64 * 0.618).fract());
+            assert_eq!(p[1], (i as f64 * 0.377).fract() * 1e-3);
+            assert_eq!(got.pslg.point_markers[i], (i % 3) as i32);
+            assert_eq!(got.point_attributes[i], (i % 7) as f64);
+        }
+        // A bad number near the end, a missing line, an extra line: each named with its line
+        // and vertex, as the line-by-line reader names them.
+        let bad = text.replacen(&format!("\n{} ", n - 3), &format!("\n{} x", n - 3), 1);
+        let e = parse_node(&bad, "big.node").unwrap_err();
+        assert!(e.message.contains(&format!("vertex {}", n - 3)), "{e}");
+        assert_eq!(
+            e.line,
+            1 + bad[..bad.find(&format!("\n{} x", n - 3)).unwrap()]
+                .matches('\n')
+                .count()
+                + 1
+        );
+        let short = text.replacen(&format!("{n} 2 1 1"), &format!("{} 2 1 1", n + 1), 1);
+        let e = parse_node(&short, "big.node").unwrap_err();
+        assert!(e.message.contains("unexpected end of file"), "{e}");
+        let long = text.replacen(&format!("{n} 2 1 1"), &format!("{} 2 1 1", n - 1), 1);
+        let e = parse_node(&long, "big.node").unwrap_err();
+        assert!(e.message.contains("unexpected data"), "{e}");
+    }
 
     fn no_node() -> Result<TriangleInput, ParseError> {
         panic!("the .node loader must not be called for a .poly with vertices")

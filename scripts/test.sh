@@ -60,4 +60,13 @@ if [ -d ../shared/data/2d ]; then
 else
   echo "== conformance skipped: ../shared not found"
 fi
+echo "== the same meshes on 1 and 2 threads (scripts/digest.sh: conformance cases, examples, campaign runs)"
+for t in 1 2; do
+  IDMESH_THREADS=$t CAMPAIGN=300 bash scripts/digest.sh \
+    > "/tmp/idmesh-digest-$t.txt" || { echo "scripts/digest.sh failed"; exit 1; }
+done
+[ -s /tmp/idmesh-digest-1.txt ] || { echo "scripts/digest.sh digested nothing"; exit 1; }
+diff /tmp/idmesh-digest-1.txt /tmp/idmesh-digest-2.txt \
+  || { echo "the meshes above differ between 1 and 2 threads"; exit 1; }
+echo "$(wc -l < /tmp/idmesh-digest-1.txt) meshes identical on 1 and 2 threads"
 echo "== all tests passed"

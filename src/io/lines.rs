@@ -73,6 +73,13 @@ impl<const D: usize> VertexRows<D> {
         rest: bool,
         base_of: impl Fn(i64) -> u32,
     ) -> Result<(Self, u32), ParseError> {
+        // Vertex ids are u32 below NONE.
+        if n >= crate::NONE as usize {
+            return Err(rec.error(format!(
+                "too many vertices ({n}); at most {} are supported",
+                crate::NONE - 1
+            )));
+        }
         check_attribute_count(rec, n, na, text)?;
         let mut rows = VertexRows::<D> {
             points: Vec::with_capacity(capacity(n, text)),

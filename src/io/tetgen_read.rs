@@ -100,12 +100,6 @@ fn read_vertices<'a>(
     rest: bool,
 ) -> Result<TetgenInput, ParseError> {
     let n = header.count;
-    if n >= NONE as usize {
-        return Err(rec.error(format!(
-            "too many vertices ({n}); at most {} are supported",
-            NONE - 1
-        )));
-    }
     let na = header.num_attributes;
     // TetGen numbers from 1 only when the first vertex is numbered 1.
     let (rows, base) =

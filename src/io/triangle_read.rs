@@ -108,12 +108,6 @@ fn read_vertices<'a>(
     rest: bool,
 ) -> Result<Vertices, ParseError> {
     let n = header.count;
-    if u32::try_from(n).is_err() {
-        return Err(rec.error(format!(
-            "too many vertices ({n}); at most {} are supported",
-            u32::MAX
-        )));
-    }
     let na = header.num_attributes;
     let with_markers = header.markers;
     // Triangle numbers from 0 only when the first vertex is numbered 0.
@@ -660,6 +654,12 @@ mod tests {
         assert!(e.message.contains("unexpected end of file"), "{e}");
         let e = err("9999999999999 2 0 0\n1 0 0\n");
         assert!(e.message.contains("too many vertices"), "{e}");
+        // Vertex ids are u32 below NONE (as in 3D): 2^32 - 1 vertices are one too many.
+        let e = err("4294967295 2 0 0\n1 0 0\n");
+        assert!(
+            e.message.contains("at most 4294967294 are supported"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -52,6 +52,8 @@ for t in test_c_api test_mesher3d test_progress triangle_client_c triangle_clien
 done
 echo "== fuzz smoke run (readers and C API targets, 30 s each)"
 bash scripts/fuzz_smoke.sh 30
+echo "== the exact rechecks of the campaign's verifier failures pass right meshes, fail wrong ones"
+python3 fuzz/test_recheck.py
 if [ -d ../shared/data/2d ]; then
   echo "== conformance against ../shared/data/2d"
   bash conformance/run2d.sh

@@ -62,6 +62,20 @@ if [ -d ../shared/data/2d ]; then
 else
   echo "== conformance skipped: ../shared not found"
 fi
+if [ -d ../shared/data/3d ] && [ -f ../shared/tools/verify3d.py ]; then
+  echo "== a verified fuzz campaign: 300 runs per dimension (seed 1), every mesh through the shared verifiers"
+  cargo build --release --quiet --example fuzz_campaign
+  for d in 2d 3d; do
+    out="/tmp/idmesh-campaign-$d"
+    rm -rf "$out"
+    IDMESH_CAMPAIGN_DUMP="$out" target/release/examples/fuzz_campaign "$d" 1 0..300 > "$out.log" 2>&1
+    sed -n '/campaign, seed/,$p' "$out.log"
+    if grep -qE 'INTERNAL|HANG|panic|other error' "$out.log"; then
+      echo "the campaign failed:"; grep -A1 '^run ' "$out.log" | head -20; exit 1
+    fi
+    bash fuzz/verify_campaign.sh "$out" ../shared/tools | tail -3
+  done
+fi
 echo "== the same meshes on 1 and 2 threads (scripts/digest.sh: conformance cases, examples, campaign runs)"
 for t in 1 2; do
   IDMESH_THREADS=$t CAMPAIGN=300 bash scripts/digest.sh \

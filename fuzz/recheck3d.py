@@ -371,6 +371,7 @@ class Case:
         P = self.P
         bad = []
         exterior = 0
+        self.on_segment = set()  # edges along a segment: the chains' and their branches
         for ia, ib in sorted(segs):
             a, b = self.by_xyz.get(self.ipts[ia]), self.by_xyz.get(self.ipts[ib])
             if a is None or b is None:
@@ -395,6 +396,7 @@ class Case:
                 for u in graph.get(w, ()):
                     if u in seen or along(u) <= along(w) or not near(u):
                         continue
+                    self.on_segment.add((min(u, w), max(u, w)))
                     if u == b:
                         covered = True
                         break
@@ -481,8 +483,9 @@ class Case:
         """The meshed region is the input's: every boundary face lies on a facet (above), no
         hole point lies in a tet, and the outside of every boundary face is exterior: a ray from
         its centroid reaches infinity, or a segment reaches a hole point, crossing no facet
-        (the normal first, then 15 random outward directions; exact). As in verify3d.py, a
-        face whose outside sees neither is reported although a path around might exist."""
+        (the normal first, then 15 random outward directions; exact), or it shares an edge
+        along no segment with such a face. As in verify3d.py, a face whose outside sees
+        neither is reported although a longer path might exist."""
         P = self.P
         den = self.den
         off = [f for f in self.boundary if f not in self.on_facet]
@@ -531,8 +534,32 @@ class Case:
                     return True
             return False
 
+        # Boundary faces that share an edge along no segment have their outsides in one region
+        # (two facets meet only along segments): one proof serves the whole group.
+        parent = {f: f for f in self.boundary}
+
+        def root(f):
+            while parent[f] != f:
+                parent[f] = parent[parent[f]]
+                f = parent[f]
+            return f
+
+        by_edge = {}
+        for f in self.boundary:
+            for i in range(3):
+                e = (f[i], f[(i + 1) % 3])
+                e = (min(e), max(e))
+                if e in self.on_segment:
+                    continue
+                if e in by_edge:
+                    parent[root(f)] = root(by_edge[e])
+                else:
+                    by_edge[e] = f
+        proven = set()
         unproven = []
         for f, ti in self.boundary.items():
+            if root(f) in proven:
+                continue
             a, b, c = (P[v] for v in f)
             d = P[next(v for v in self.tets[ti] if v not in f)]
             n = cross(sub(b, a), sub(c, a))
@@ -541,6 +568,7 @@ class Case:
             S = tuple(a[i] + b[i] + c[i] for i in range(3))
             to_holes = [tuple(3 * h[i] - S[i] for i in range(3)) for h in holes]
             if any(dot(D, n) > 0 and not blocked(S, 3, D, True) for D in to_holes):
+                proven.add(root(f))
                 continue
             dirs = [n]
             while len(dirs) < 16:
@@ -548,8 +576,10 @@ class Case:
                 if dot(r, n):
                     dirs.append(r if dot(r, n) > 0 else tuple(-x for x in r))
             if not all(blocked(S, 3, D, False) for D in dirs):
+                proven.add(root(f))
                 continue
             unproven.append(f)
+        unproven = [f for f in unproven if root(f) not in proven]
         if unproven:
             self.fail(f"{len(unproven)} boundary faces whose outside is not shown exterior (no ray "
                       f"to infinity or a hole point misses the facets), e.g. {min(unproven)}")

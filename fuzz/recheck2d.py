@@ -28,10 +28,11 @@ from fractions import Fraction as F
 
 
 def records(path):
-    for line in open(path):
-        line = line.split("#", 1)[0].split()
-        if line:
-            yield line
+    with open(path) as f:
+        for line in f:
+            line = line.split("#", 1)[0].split()
+            if line:
+                yield line
 
 
 def read_node_section(it, n):

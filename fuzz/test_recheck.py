@@ -201,8 +201,11 @@ class CampaignCases(unittest.TestCase):
 
     def files(self, name):
         base = os.path.join(HERE, "recheck_cases", name)
-        return [(e, open(base + e).read().rstrip("\n").split("\n"))
-                for e in (".poly", ".node", ".ele", ".face")]
+        files = []
+        for e in (".poly", ".node", ".ele", ".face"):
+            with open(base + e) as f:
+                files.append((e, f.read().rstrip("\n").split("\n")))
+        return files
 
     def test_recheck_passes_them(self):
         for name in self.CASES:

@@ -26,27 +26,13 @@ import math
 import sys
 from fractions import Fraction as F
 
-
-def records(path):
-    with open(path) as f:
-        for line in f:
-            line = line.split("#", 1)[0].split()
-            if line:
-                yield line
-
-
-def read_node_section(it, n):
-    pts = {}
-    for _ in range(n):
-        r = next(it)
-        pts[int(r[0])] = (float(r[1]), float(r[2]))
-    return pts
+from tetgen_files import read_points, records
 
 
 def read_input(poly):
     it = records(poly)
     h = next(it)
-    pts = read_node_section(it, int(h[0]))
+    pts = read_points(it, int(h[0]), 2)
     ns = int(next(it)[0])
     segs = [(int(r[1]), int(r[2])) for r in (next(it) for _ in range(ns))]
     return pts, segs
@@ -54,7 +40,7 @@ def read_input(poly):
 
 def read_mesh(node, ele):
     it = records(node)
-    pts = read_node_section(it, int(next(it)[0]))
+    pts = read_points(it, int(next(it)[0]), 2)
     it = records(ele)
     nt = int(next(it)[0])
     tris = [tuple(int(x) for x in next(it)[1:4]) for _ in range(nt)]

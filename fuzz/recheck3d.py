@@ -45,21 +45,7 @@ import random
 import sys
 from fractions import Fraction as F
 
-
-def records(path):
-    with open(path) as f:
-        for line in f:
-            line = line.split("#", 1)[0].split()
-            if line:
-                yield line
-
-
-def read_points(it, n):
-    pts = {}
-    for _ in range(n):
-        r = next(it)
-        pts[int(r[0])] = tuple(float(x) for x in r[1:4])
-    return pts
+from tetgen_files import read_points, records
 
 
 def read_plc(poly):
@@ -71,9 +57,9 @@ def read_plc(poly):
     if n == 0:
         node = poly[: -len(".poly")] + ".node"
         nit = records(node)
-        pts = read_points(nit, int(next(nit)[0]))
+        pts = read_points(nit, int(next(nit)[0]), 3)
     else:
-        pts = read_points(it, n)
+        pts = read_points(it, n, 3)
     facets = []
     for _ in range(int(next(it)[0])):
         h = next(it)
@@ -94,7 +80,7 @@ def read_plc(poly):
 
 def read_mesh(node, ele, face):
     it = records(node)
-    pts = read_points(it, int(next(it)[0]))
+    pts = read_points(it, int(next(it)[0]), 3)
     it = records(ele)
     tets = [tuple(int(x) for x in next(it)[1:5]) for _ in range(int(next(it)[0]))]
     it = records(face)

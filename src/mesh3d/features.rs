@@ -73,7 +73,32 @@ pub(crate) struct Features {
     pub plane_group: Vec<u32>,
     /// Per vertex: lies on a segment or facet (so simplices made only of such vertices may be
     /// features). A cheap filter before hash lookups.
-    pub on_feature: Vec<bool>,
+    on_feature: Vec<bool>,
+    /// Per vertex: the [`id_bit`]s of the input edges with a subsegment ending at it. Both ends
+    /// of a subsegment of edge `e` have `e`'s bit, so two vertices whose masks share no bit
+    /// are no subsegment: a finer filter than `on_feature` where every vertex near the
+    /// surface is a feature (a triangulated surface), which spares most hash lookups of the
+    /// cavity's edges.
+    edge_mask: Vec<u64>,
+    /// Per vertex: the [`id_bit`]s of its facets (`vert_facets`); the same filter for subfaces.
+    facet_mask: Vec<u64>,
+}
+
+/// The bit of an edge or facet id in a vertex's 64-bit mask (a one-hash Bloom filter).
+#[inline]
+fn id_bit(id: u32) -> u64 {
+    1 << ((id as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 58)
+}
+
+/// Sets the bits of `ids` in `mask[v]`, growing `mask` as needed.
+fn add_bits(mask: &mut Vec<u64>, v: u32, ids: impl IntoIterator<Item = u32>) {
+    let i = v as usize;
+    if mask.len() <= i {
+        mask.resize(i + 1, 0);
+    }
+    for id in ids {
+        mask[i] |= id_bit(id);
+    }
 }
 
 /// A triple of `verts` spanning their plane about as well as any: `first[0]`, the vertex
@@ -319,6 +344,16 @@ impl Features {
         for &v in vert_facets.keys() {
             on_feature[v as usize] = true;
         }
+        let mut edge_mask = vec![0; n];
+        for (id, e) in edges.iter().enumerate() {
+            for v in e.ends {
+                add_bits(&mut edge_mask, v, [id as u32]);
+            }
+        }
+        let mut facet_mask = vec![0; n];
+        for (&v, fs) in &vert_facets {
+            add_bits(&mut facet_mask, v, fs.iter().copied());
+        }
         let plane_group = coplanar_groups(&plc.points, &facets, &edges);
         Ok(Features {
             plane_group,
@@ -330,6 +365,8 @@ impl Features {
             vert_facets,
             split_edge: HashMap::default(),
             on_feature,
+            edge_mask,
+            facet_mask,
         })
     }
 
@@ -347,13 +384,36 @@ impl Features {
         }
         self.seg_adj.insert(m, vec![a, b]);
         self.split_edge.insert(m, e);
+        add_bits(&mut self.edge_mask, m, [e]);
         let fs = self.edges[e as usize].facets.clone();
+        self.set_vertex_facets(m, fs);
+    }
+
+    /// Records Steiner point `m` as lying on the facets `fs` (one facet, or the facets of the
+    /// input edge it splits) and marks it a feature.
+    pub fn set_vertex_facets(&mut self, m: u32, fs: Vec<u32>) {
+        add_bits(&mut self.facet_mask, m, fs.iter().copied());
         self.vert_facets.insert(m, fs);
         self.mark_feature(m);
     }
 
+    /// Forgets boundary Steiner point `s` (taken off the surface under `-Y`): it is on no
+    /// feature any more.
+    pub fn forget_vertex(&mut self, s: u32) {
+        self.vert_facets.remove(&s);
+        let i = s as usize;
+        for x in [&mut self.edge_mask, &mut self.facet_mask] {
+            if let Some(m) = x.get_mut(i) {
+                *m = 0;
+            }
+        }
+        if let Some(f) = self.on_feature.get_mut(i) {
+            *f = false;
+        }
+    }
+
     /// Marks vertex `v` as lying on a feature.
-    pub fn mark_feature(&mut self, v: u32) {
+    fn mark_feature(&mut self, v: u32) {
         let i = v as usize;
         if self.on_feature.len() <= i {
             self.on_feature.resize(i + 1, false);
@@ -413,6 +473,23 @@ impl Features {
         })
     }
 
+    /// Checks that the vertex masks admit every current subsegment and subface (else
+    /// [`Features::subseg`] and [`Features::subface`] would miss it): the one it misses.
+    pub fn check_masks(&self) -> Result<(), String> {
+        for &k in self.subsegs.keys() {
+            let (a, b) = ((k >> 32) as u32, k as u32);
+            if self.subseg(a, b).is_none() {
+                return Err(format!("the edge mask hides subsegment {a}-{b}"));
+            }
+        }
+        for &f in self.subfaces.keys() {
+            if self.subface(f).is_none() {
+                return Err(format!("the facet mask hides subface {f:?}"));
+            }
+        }
+        Ok(())
+    }
+
     /// Whether `v` lies on a feature.
     #[inline]
     pub fn is_feature(&self, v: u32) -> bool {
@@ -422,7 +499,8 @@ impl Features {
     /// The input edge of subsegment `ab`, if it is one.
     #[inline]
     pub fn subseg(&self, a: u32, b: u32) -> Option<u32> {
-        if !self.is_feature(a) || !self.is_feature(b) {
+        let m = |v: u32| self.edge_mask.get(v as usize).copied().unwrap_or(0);
+        if m(a) & m(b) == 0 {
             return None;
         }
         self.subsegs.get(&ekey(a, b)).copied()
@@ -431,7 +509,8 @@ impl Features {
     /// The facet of subface `abc`, if it is one.
     #[inline]
     pub fn subface(&self, v: [u32; 3]) -> Option<u32> {
-        if !v.iter().all(|&x| self.is_feature(x)) {
+        let m = |x: u32| self.facet_mask.get(x as usize).copied().unwrap_or(0);
+        if m(v[0]) & m(v[1]) & m(v[2]) == 0 {
             return None;
         }
         self.subfaces.get(&fkey(v)).copied()

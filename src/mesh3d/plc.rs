@@ -294,6 +294,7 @@ fn mesh_plc_in(
         }
     }
     super::validate::check_facet_points(&m.feat, &m.pts, m.num_input)?;
+    m.feat.check_masks().map_err(Error::Internal)?;
     if let Some(s) = frame {
         if !m.snap_to_frame(s) {
             return Ok((None, m.steiner));

@@ -303,10 +303,7 @@ impl Mesher<'_> {
                 }
             }
         }
-        self.feat.vert_facets.remove(&s);
-        if let Some(f) = self.feat.on_feature.get_mut(s as usize) {
-            *f = false;
-        }
+        self.feat.forget_vertex(s);
         Ok(Ok(()))
     }
 

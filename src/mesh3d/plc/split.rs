@@ -274,8 +274,7 @@ impl Mesher<'_> {
         } else {
             self.counts.face_missing += 1;
         }
-        self.feat.mark_feature(m);
-        self.feat.vert_facets.insert(m, vec![fid]);
+        self.feat.set_vertex_facets(m, vec![fid]);
         self.insert3d(m, false)
             .map_err(|_| Error::Internal(format!("facet point {m} refused")))
     }

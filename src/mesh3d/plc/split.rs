@@ -95,7 +95,7 @@ impl Mesher<'_> {
                     }
                 })?;
         }
-        self.insert3d(m, false)
+        self.insert3d(m, false, false)
             .map_err(|_| Error::Internal(format!("segment split point {m} refused")))
     }
 
@@ -275,7 +275,7 @@ impl Mesher<'_> {
             self.counts.face_missing += 1;
         }
         self.feat.set_vertex_facets(m, vec![fid]);
-        self.insert3d(m, false)
+        self.insert3d(m, false, false)
             .map_err(|_| Error::Internal(format!("facet point {m} refused")))
     }
 
@@ -461,11 +461,25 @@ impl Mesher<'_> {
         c: [[f64; 3]; 4],
         cc: [f64; 3],
     ) -> Result<(), Error> {
-        let m = self.new_vertex(cc)?;
         if self.walled {
+            let m = self.new_vertex(cc)?;
             return self.take_tet_walled(t, c, m);
         }
-        match self.insert3d(m, true) {
+        // A refusal queues splits of what the point encroaches and `t` again. Were nothing
+        // inserted before `t` comes back, it would be refused the same way for ever: the
+        // second try searches the whole cavity (the first stops at the first encroached
+        // feature, which may be one that cannot be split), and after a third `t` stays.
+        if self.refused_at != self.steiner {
+            self.refused.clear();
+            self.refused_at = self.steiner;
+        }
+        let tries = self.refused.get(&(t, vs)).copied().unwrap_or(0);
+        if tries >= 2 {
+            self.counts.tet_given_up += 1;
+            return Ok(());
+        }
+        let m = self.new_vertex(cc)?;
+        match self.insert3d(m, true, tries == 0) {
             Ok(()) => {
                 self.steiner += 1;
                 self.counts.tet += 1;
@@ -477,6 +491,7 @@ impl Mesher<'_> {
             Err(enc) => {
                 self.pts.pop();
                 self.counts.tet_refused += 1;
+                self.refused.insert((t, vs), tries + 1);
                 if enc.is_empty() {
                     // The circumcenter coincides with a vertex, or lies outside the box. Outside
                     // the box it is outside the domain, beyond a facet: the subface the way to

@@ -12,8 +12,9 @@
 //! 3. **Non-planar polygons** (a corner off the plane of three others, exact `orient3d`) are
 //!    triangulated on their own vertices: projected along a coordinate axis in which the
 //!    polygon is simple (tried in the order of the Newell normal's components, largest
-//!    first, a floating-point choice that exact tests then confirm), by ear clipping with
-//!    exact orientation tests (`clip_ears` of `-Y`'s surface code). The triangles are the
+//!    first, a floating-point choice that exact tests then confirm), as the constrained
+//!    Delaunay triangulation of the polygon by the 2D kernel (exact orientation and
+//!    in-circle tests, [`FacetTriangulation::polygon`]; `-Y` uses it too). The triangles are the
 //!    graph of a piecewise linear function over a simple polygon, so they do not intersect
 //!    each other. A polygon that is simple in no axis projection (or has more than
 //!    [`MAX_CLIP`] corners) is refused: [`InputError::UntriangulablePolygon`].
@@ -31,14 +32,13 @@
 
 use std::fmt;
 
-use super::plc::keep::clip_ears;
 use crate::error::{Error, InputError, Item};
-use crate::input3d::{by_coordinates, check_items, Facet, Plc};
+use crate::input3d::{by_coordinates, check_items, Facet, FacetTriangulation, Plc};
 use crate::predicates::{collinear3 as collinear, orient2d, orient3d, proj};
 use crate::NONE;
 
-/// Non-planar polygons with more corners than this are refused rather than clipped (ear
-/// clipping takes time cubic in the corners in the worst case).
+/// Non-planar polygons with more corners than this are refused rather than triangulated
+/// (finding a projection in which the polygon is simple takes time quadratic in the corners).
 pub const MAX_CLIP: usize = 2000;
 
 /// One kind of repair made, with how often and the first item (0-based input numbering).
@@ -390,7 +390,7 @@ fn triangulate_non_planar(poly: &[u32], at: &dyn Fn(u32) -> [f64; 3]) -> Option<
             poly.iter().rev().copied().collect()
         };
         let mut tris = Vec::with_capacity(m - 2);
-        clip_ears(&ring, &p2, &mut tris)?;
+        FacetTriangulation::polygon(&ring, &p2, &mut tris)?;
         if !ccw {
             tris.iter_mut().for_each(|t| t.swap(1, 2));
         }

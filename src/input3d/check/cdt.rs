@@ -98,6 +98,49 @@ impl FacetTriangulation {
         Err(CdtError::Budget("constraint splits"))
     }
 
+    /// Triangulates the counter-clockwise simple polygon `ring` (vertex ids, projected by
+    /// `p2`) on its own vertices: the constrained Delaunay triangulation of its corners with
+    /// its edges as constraints, the triangles inside appended to `out` (counter-clockwise,
+    /// as ids of `ring`). `None`, with `out` unchanged, when `ring` is not a counter-clockwise
+    /// simple polygon in this projection: fewer than three corners, all on a line, a repeated
+    /// point, an edge through another corner, edges that cross, or clockwise order (then some
+    /// edge `a b` of the ring is not an edge `a → b` of a triangle inside). Every decision is
+    /// an exact `orient2d` or `incircle`.
+    pub fn polygon(
+        ring: &[u32],
+        p2: &dyn Fn(u32) -> [f64; 2],
+        out: &mut Vec<[u32; 3]>,
+    ) -> Option<()> {
+        let n = ring.len();
+        if n < 3 {
+            return None;
+        }
+        let pts: Vec<[f64; 2]> = ring.iter().map(|&v| p2(v)).collect();
+        let mut ft = FacetTriangulation::default();
+        ft.triangulate(&pts).ok()?;
+        for i in 0..n as u32 {
+            let j = (i + 1) % n as u32;
+            ft.constrain(i, j, i).ok()?;
+            // A corner inside the edge splits it: the ring touches itself there.
+            let cdt = ft.cdt.as_ref()?;
+            if cdt.segs.last().map(|s| (s.a, s.b)) != Some((i, j)) {
+                return None;
+            }
+        }
+        ft.classify(&[]);
+        let inside: Vec<[u32; 3]> = ft.region().collect();
+        let directed: crate::hash::FastSet<(u32, u32)> = inside
+            .iter()
+            .flat_map(|t| (0..3).map(move |k| (t[k], t[(k + 1) % 3])))
+            .collect();
+        let ccw = (0..n as u32).all(|i| directed.contains(&(i, (i + 1) % n as u32)));
+        if inside.len() != n - 2 || !ccw {
+            return None;
+        }
+        out.extend(inside.iter().map(|t| t.map(|k| ring[k as usize])));
+        Some(())
+    }
+
     /// Whether edge `ab` was recovered as a constraint (tests only).
     #[cfg(test)]
     pub fn is_constrained(&self, a: u32, b: u32) -> bool {
@@ -234,6 +277,7 @@ impl FacetTriangulation {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::predicates::{incircle, orient2d};
 
     fn area(cdt: &FacetTriangulation) -> f64 {
         cdt.region()
@@ -416,5 +460,96 @@ mod tests {
         let c = run(&pts, &[&[0, 4, 2, 3]], &[]).unwrap();
         assert_eq!(area(&c), 2.0);
         assert_eq!(c.diagonals().count(), 4, "the four spokes to vertex 1");
+    }
+
+    /// `FacetTriangulation::polygon` of `pts` in order, ids shifted by 10 (the ring's ids are
+    /// not its positions).
+    fn polygon(pts: &[[f64; 2]]) -> Option<Vec<[u32; 3]>> {
+        let ring: Vec<u32> = (10..10 + pts.len() as u32).collect();
+        let mut out = vec![[0; 3]];
+        let got = FacetTriangulation::polygon(&ring, &|v| pts[v as usize - 10], &mut out);
+        assert_eq!(out[0], [0; 3], "what `out` held is kept");
+        if got.is_none() {
+            assert_eq!(out.len(), 1, "nothing appended on failure");
+            return None;
+        }
+        Some(out[1..].to_vec())
+    }
+
+    #[test]
+    fn polygon_triangulates_a_non_convex_polygon() {
+        // An L shape with a collinear run along its bottom.
+        let pts = [
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [2.0, 0.0],
+            [2.0, 1.0],
+            [1.0, 1.0],
+            [1.0, 2.0],
+            [0.0, 2.0],
+        ];
+        let tris = polygon(&pts).unwrap();
+        assert_eq!(tris.len(), pts.len() - 2);
+        let mut area = 0.0;
+        for t in &tris {
+            let [a, b, c] = t.map(|v| pts[v as usize - 10]);
+            assert!(
+                orient2d(a, b, c) > 0.0,
+                "triangle {t:?} is not counter-clockwise"
+            );
+            area += crate::geometry::area2(a, b, c) / 2.0;
+        }
+        assert!((area - 3.0).abs() < 1e-12, "area {area}");
+    }
+
+    #[test]
+    fn polygon_is_constrained_delaunay() {
+        // A long thin convex hexagon: ear clipping from any corner may leave a fan, the
+        // constrained Delaunay triangulation has every inner edge locally Delaunay.
+        let pts = [
+            [0.0, 0.0],
+            [3.0, -0.4],
+            [7.0, -0.5],
+            [10.0, 0.0],
+            [6.0, 0.6],
+            [2.0, 0.5],
+        ];
+        let tris = polygon(&pts).unwrap();
+        assert_eq!(tris.len(), 4);
+        let at = |v: u32| pts[v as usize - 10];
+        for t in &tris {
+            for u in &tris {
+                for v in *u {
+                    if !t.contains(&v) {
+                        let [a, b, c] = t.map(at);
+                        assert!(
+                            incircle(a, b, c, at(v)) <= 0.0,
+                            "corner {v} lies inside the circumcircle of {t:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn polygon_refuses_what_is_not_a_counter_clockwise_simple_polygon() {
+        let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        assert!(polygon(&square).is_some());
+        let mut clockwise = square;
+        clockwise.reverse();
+        assert!(polygon(&clockwise).is_none(), "clockwise");
+        let bowtie = [[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]];
+        assert!(polygon(&bowtie).is_none(), "crossing edges");
+        // The last edge runs back through corner 1.
+        let through = [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 0.0]];
+        assert!(polygon(&through).is_none(), "repeated point");
+        let touching = [[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [1.0, 0.0], [0.0, 2.0]];
+        assert!(polygon(&touching).is_none(), "a corner inside an edge");
+        assert!(
+            polygon(&[[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]]).is_none(),
+            "collinear"
+        );
+        assert!(polygon(&square[..2]).is_none(), "two corners");
     }
 }

@@ -5,7 +5,8 @@
 //! triangles that are not Delaunay, Schönhardt-like polyhedra). Then the outside is carved away
 //! and every boundary Steiner point `s` is *suppressed*:
 //! * each facet through `s` is triangulated again without it (its star in the facet is a
-//!   polygon; ear clipping, exact in the facet's projection), and an input edge through `s`
+//!   polygon; its constrained Delaunay triangulation by the 2D kernel, exact in the facet's
+//!   projection, [`crate::input3d::FacetTriangulation::polygon`]), and an input edge through `s`
 //!   gets its two pieces back as one;
 //! * the tets around `s` fall into groups, one per wedge of the domain between the facets
 //!   through `s`; each group is re-coned from a new point moved off the facets into its
@@ -30,10 +31,11 @@
 
 use super::{Mesher, UNKNOWN};
 use crate::error::Error;
+use crate::input3d::FacetTriangulation;
 use crate::mesh3d::features::{ekey, fkey, proj};
 use crate::mesh3d::store::{ReplaceError, FACE};
 use crate::mesh3d::NONE;
-use crate::predicates::{in_diametral_ball_seg3, in_lens_tri, incircle, orient2d, orient3d};
+use crate::predicates::{in_diametral_ball_seg3, in_lens_tri, orient2d, orient3d};
 
 /// Height of the lens of a subface (relative to its circumradius) that refinement points must
 /// stay out of once the surface is kept. TetGen refuses the whole diametral ball (height 1),
@@ -309,7 +311,7 @@ impl Mesher<'_> {
 
     /// The new triangles of facet `fid` around `s` (its subfaces `old` there), without `s`:
     /// the polygon around `s`, split along the input edge through `s` when that edge runs
-    /// across the facet, clipped into triangles counter-clockwise in the facet's projection.
+    /// across the facet, triangulated counter-clockwise in the facet's projection.
     fn retriangulate(&self, s: u32, fid: u32, old: &[[u32; 3]]) -> Result<Vec<[u32; 3]>, String> {
         let axis = self.feat.facets[fid as usize].axis;
         let p2 = |v: u32| proj(self.pts[v as usize], axis);
@@ -389,8 +391,8 @@ impl Mesher<'_> {
         }
         let mut tris = Vec::new();
         for p in polys {
-            clip_ears(&p, &p2, &mut tris)
-                .ok_or_else(|| format!("facet {fid}'s polygon around it cannot be clipped"))?;
+            FacetTriangulation::polygon(&p, &p2, &mut tris)
+                .ok_or_else(|| format!("facet {fid}'s polygon around it cannot be triangulated"))?;
         }
         Ok(tris)
     }
@@ -692,95 +694,5 @@ impl Mesher<'_> {
             }
         }
         false
-    }
-}
-
-/// Clips the counter-clockwise simple polygon `poly` (vertices projected by `p2`) into
-/// triangles appended to `out`, counter-clockwise. An ear is a convex corner whose triangle
-/// holds no other polygon vertex (exact tests); among the ears one whose circumcircle holds no
-/// other polygon vertex is preferred (the Delaunay one, when the polygon has it). `None` when
-/// no ear is left (not a simple polygon in this projection).
-pub(crate) fn clip_ears(
-    poly: &[u32],
-    p2: &dyn Fn(u32) -> [f64; 2],
-    out: &mut Vec<[u32; 3]>,
-) -> Option<()> {
-    let mut ring = poly.to_vec();
-    while ring.len() > 3 {
-        let n = ring.len();
-        let mut any = None;
-        let mut delaunay = None;
-        for i in 0..n {
-            let (a, b, c) = (ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n]);
-            let (pa, pb, pc) = (p2(a), p2(b), p2(c));
-            if orient2d(pa, pb, pc) <= 0.0 {
-                continue;
-            }
-            let others = ring.iter().copied().filter(|&x| x != a && x != b && x != c);
-            let blocked = others.clone().any(|x| {
-                let q = p2(x);
-                orient2d(pa, pb, q) >= 0.0
-                    && orient2d(pb, pc, q) >= 0.0
-                    && orient2d(pc, pa, q) >= 0.0
-            });
-            if blocked {
-                continue;
-            }
-            any.get_or_insert(i);
-            if others.clone().all(|x| incircle(pa, pb, pc, p2(x)) <= 0.0) {
-                delaunay = Some(i);
-                break;
-            }
-        }
-        let i = delaunay.or(any)?;
-        out.push([ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n]]);
-        ring.remove(i);
-    }
-    let [a, b, c] = [ring[0], ring[1], ring[2]];
-    if orient2d(p2(a), p2(b), p2(c)) <= 0.0 {
-        return None;
-    }
-    out.push([a, b, c]);
-    Some(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::clip_ears;
-    use crate::predicates::orient2d;
-
-    #[test]
-    fn ear_clipping_triangulates_a_non_convex_polygon() {
-        // An L shape with a collinear run along its bottom.
-        let pts = [
-            [0.0, 0.0],
-            [1.0, 0.0],
-            [2.0, 0.0],
-            [2.0, 1.0],
-            [1.0, 1.0],
-            [1.0, 2.0],
-            [0.0, 2.0],
-        ];
-        let poly: Vec<u32> = (0..pts.len() as u32).collect();
-        let mut out = Vec::new();
-        clip_ears(&poly, &|v| pts[v as usize], &mut out).unwrap();
-        assert_eq!(out.len(), pts.len() - 2);
-        let mut area = 0.0;
-        for t in &out {
-            let [a, b, c] = t.map(|v| pts[v as usize]);
-            assert!(
-                orient2d(a, b, c) > 0.0,
-                "triangle {t:?} is not counter-clockwise"
-            );
-            area += crate::geometry::area2(a, b, c) / 2.0;
-        }
-        assert!((area - 3.0).abs() < 1e-12, "area {area}");
-    }
-
-    #[test]
-    fn ear_clipping_refuses_a_clockwise_polygon() {
-        let pts = [[0.0, 0.0], [0.0, 1.0], [1.0, 1.0], [1.0, 0.0]];
-        let mut out = Vec::new();
-        assert!(clip_ears(&[0, 1, 2, 3], &|v| pts[v as usize], &mut out).is_none());
     }
 }

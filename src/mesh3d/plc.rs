@@ -453,7 +453,7 @@ impl Mesher<'_> {
             // that tet's features stand for the point, as any encroached feature may, and the
             // rest of the cavity is not searched. Refused circumcentres beyond the boundary
             // have huge cavities reaching outside the domain: searching them whole took four
-            // fifths of a CAD model's refinement (rotor.off, 832,000 of 972,000 cavity tets).
+            // fifths of a CAD rotor's refinement at -pq (832,000 of 972,000 cavity tets).
             let (feat, pts) = (&self.feat, &self.pts);
             let found = self
                 .tets

@@ -77,7 +77,7 @@ const CANDIDATES: u32 = 12;
 /// left); with 48 it is done in 3 rounds with 6,585 tets, and fewer points overall on the
 /// benchmark inputs (`bench/quality3d.py`). When none of the first goes in, the boundary is
 /// split without trying more: more only lowered the demand a little, at 36 more probes for
-/// each such sliver (1,847 of the 4,771 slivers of triceratops.off `-pq`).
+/// each such sliver (1,847 of the 4,771 slivers of a scanned animal model at `-pq`).
 const CANDIDATES_HARD: u32 = 48;
 
 /// Largest cavity a candidate may have (tets). A sliver's picking region can reach into the

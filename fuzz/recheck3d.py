@@ -34,8 +34,8 @@ from the segment's line than `ULPS` units in the last place of its ends' coordin
 points are rounded); every facet is covered: the output triangles whose vertices lie within
 the same tolerance of its plane and whose centroid projects into it have, in the projection
 along its normal's dominant axis, the facet's area up to what that rounding can move
-(perimeter times the tolerance). Facets made of several polygons or with holes are not
-rechecked (reported, and the case fails): the campaign's inputs have none.
+(perimeter times the tolerance). A facet of several polygons is the region they bound, less
+what its hole points take out (see FacetRegion).
 
     fuzz/recheck3d.py CASE.poly CASE.node CASE.ele CASE.face [ULPS]
 """
@@ -50,7 +50,7 @@ from tetgen_files import read_points, records
 
 def read_plc(poly):
     """Input vertices, facets (each a list of polygons, a polygon a list of vertex ids, and
-    the number of holes of the facet) and hole points."""
+    the facet's hole points) and the volume's hole points."""
     it = records(poly)
     h = next(it)
     n = int(h[0])
@@ -68,9 +68,8 @@ def read_plc(poly):
         for _ in range(k):
             r = next(it)
             polys.append([int(x) for x in r[1 : 1 + int(r[0])]])
-        for _ in range(nh):
-            next(it)
-        facets.append((polys, nh))
+        fholes = [tuple(float(x) for x in next(it)[1:4]) for _ in range(nh)]
+        facets.append((polys, fholes))
     holes = []
     r = next(it, None)
     for _ in range(int(r[0]) if r else 0):
@@ -124,7 +123,8 @@ class Case:
         self.opts, self.tets, self.faces = read_mesh(node, ele, face)
         # One power of two makes every coordinate an integer (floats are dyadic).
         den = 1
-        for p in list(self.ipts.values()) + list(self.opts.values()):
+        fholes = [h for _, hs in self.facets for h in hs]
+        for p in list(self.ipts.values()) + list(self.opts.values()) + self.holes + fholes:
             for x in p:
                 den = max(den, x.as_integer_ratio()[1])
         self.den = den
@@ -397,37 +397,39 @@ class Case:
             self.fail(f"{len(bad)} input segments are not chains of output edges, e.g. {bad[0]}")
         self.notes.append(f"{len(segs)} segments checked, {exterior} of them outside the mesh")
 
+    def regions(self):
+        """Each facet's FacetRegion (None for a facet of no polygon or of zero area), from the
+        input coordinates in integer units."""
+        if not hasattr(self, "_regions"):
+            den = self.den
+            ipts = {i: tuple(int(F(x) * den) for x in p) for i, p in self.ipts.items()}
+            self._regions = []
+            for polys, fholes in self.facets:
+                loops = [[ipts[i] for i in q] for q in polys if len(q) >= 3]
+                holes = [tuple(int(F(x) * den) for x in h) for h in fholes]
+                region = FacetRegion(loops, holes) if loops else None
+                self._regions.append(region if region and region.area2 else None)
+        return self._regions
+
     def facet_coverage(self):
         P = self.P
         bad = []
         checked = exterior = 0
-        self.on_facet = set()
-        for fi, (polys, nholes) in enumerate(self.facets, 1):
-            loops = [q for q in polys if len(q) >= 3]
-            if len(loops) != 1 or nholes:
-                if loops:
-                    bad.append(f"facet {fi}: {len(loops)} polygons, {nholes} holes: not rechecked")
+        self.on_facet = {}  # face -> the facets (indices) it lies on
+        for fi, ((polys, _), region) in enumerate(zip(self.facets, self.regions()), 1):
+            ids = [i for q in polys if len(q) >= 3 for i in q]
+            if not ids:
                 continue
-            ids = loops[0]
             if any(self.by_xyz.get(self.ipts[i]) is None for i in ids):
                 bad.append(f"facet {fi}: a corner is not an output vertex")
                 continue
-            q = [P[self.by_xyz[self.ipts[i]]] for i in ids]
-            normal = (0, 0, 0)
-            for k in range(len(q)):
-                c = cross(q[k], q[(k + 1) % len(q)])
-                normal = tuple(s + t for s, t in zip(normal, c))
-            if not any(normal):
+            if region is None:
                 bad.append(f"facet {fi}: zero area")
                 continue
-            axis = max(range(3), key=lambda k: abs(normal[k]))
-            u, w = (axis + 1) % 3, (axis + 2) % 3
-            poly2 = [(x[u], x[w]) for x in q]
-            area2 = abs(normal[axis])  # twice the projected area
+            normal, u, w, q0 = region.normal, region.u, region.w, region.main[0]
             tol = self.tol([c for i in ids for c in self.ipts[i]])
             n2 = dot(normal, normal)
-            lo = [min(x[k] for x in q) for k in range(3)]
-            hi = [max(x[k] for x in q) for k in range(3)]
+            lo, hi = region.lo, region.hi
             slack = int(tol) + 1
 
             def on_plane(v, cache={}):
@@ -437,7 +439,7 @@ class Case:
                     if any(x[k] < lo[k] - slack or x[k] > hi[k] + slack for k in range(3)):
                         cache[key] = False
                     else:
-                        h = dot(sub(x, q[0]), normal)
+                        h = dot(sub(x, q0), normal)
                         cache[key] = h * h <= tol * tol * n2
                 return cache[key]
 
@@ -447,22 +449,21 @@ class Case:
                     continue
                 a, b, c = (P[v] for v in f)
                 cen = ((a[u] + b[u] + c[u]), (a[w] + b[w] + c[w]))
-                if where_in_polygon(cen, poly2, 3) <= 0:
+                if region.classify(cen, 3) <= 0:
                     continue
                 covered2 += abs((b[u] - a[u]) * (c[w] - a[w]) - (b[w] - a[w]) * (c[u] - a[u]))
-                self.on_facet.add(tuple(sorted(f)))
-            perim = sum(math.dist(poly2[k], poly2[(k + 1) % len(poly2)]) for k in range(len(poly2)))
+                self.on_facet.setdefault(tuple(sorted(f)), set()).add(fi - 1)
             # Rounded split points move the boundary by at most tol (times the normal's tilt).
-            allowed = 4 * F(perim) * tol * (F(math.sqrt(n2)) / area2 + 1)
+            tilt = F(math.sqrt(n2)) / abs(normal[region.axis])
+            allowed = 4 * F(region.perimeter()) * tol * (tilt + 1)
             checked += 1
-            if covered2 == 0 and not self.meets_mesh(q):
+            if covered2 == 0 and not self.meets_mesh(region.main):
                 exterior += 1
-            elif abs(covered2 - area2) > 2 * allowed:
-                bad.append(f"facet {fi}: covered {float(F(covered2, area2))} of its area")
+            elif abs(covered2 - region.area2) > 2 * allowed:
+                bad.append(f"facet {fi}: covered {float(F(covered2, region.area2))} of its area")
         if bad:
             self.fail(f"{len(bad)} facets not covered (exact), e.g. {bad[0]}")
         self.notes.append(f"{checked} facets checked, {exterior} of them outside the mesh")
-
 
     # ---- domain ---------------------------------------------------------------------------
 
@@ -478,31 +479,21 @@ class Case:
         off = [f for f in self.boundary if f not in self.on_facet]
         if off:
             self.fail(f"{len(off)} boundary faces lie on no facet, e.g. {min(off)}")
-        ipts = {i: tuple(int(F(x) * den) for x in p) for i, p in self.ipts.items()}
-        planes = []
-        for polys, _ in self.facets:
-            for poly in polys:
-                if len(poly) < 3:
-                    continue
-                q = [ipts[i] for i in poly]
-                n = (0, 0, 0)
-                for k in range(len(q)):
-                    n = tuple(s + t for s, t in zip(n, cross(q[k], q[(k + 1) % len(q)])))
-                if not any(n):
-                    continue
-                axis = max(range(3), key=lambda k: abs(n[k]))
-                u, w = (axis + 1) % 3, (axis + 2) % 3
-                planes.append((n, dot(n, q[0]), [(x[u], x[w]) for x in q], u, w,
-                               [min(x[k] for x in q) for k in range(3)],
-                               [max(x[k] for x in q) for k in range(3)]))
+        planes = [(i, r.normal, dot(r.normal, r.main[0]), r)
+                  for i, r in enumerate(self.regions()) if r]
         holes = [tuple(int(F(x) * den) for x in h) for h in self.holes]
         for h in holes:
             if any(contains([P[v] for v in t], h) for t in self.tets):
                 self.fail(f"hole point {h} lies in a tet")
 
-        def blocked(S, k, D, segment):
-            # The ray (S + t D) / k, t > 0 (t < 1 for a segment), meets a facet (closed).
-            for n, c, poly, u, w, lo, hi in planes:
+        def blocked(S, k, D, segment, own):
+            # The ray (S + t D) / k, t > 0 (t < 1 for a segment), meets a facet (closed) other
+            # than the facets `own` of the face it starts from: that face's rounded Steiner
+            # points can put its centroid a hair inside its own facet's plane, and a ray
+            # leaving a plane does not meet it again.
+            for fi, n, c, region in planes:
+                if fi in own:
+                    continue
                 s = dot(n, D)
                 num = k * c - dot(n, S)
                 if s == 0:
@@ -515,9 +506,9 @@ class Case:
                     continue
                 X = tuple(S[i] * s + num * D[i] for i in range(3))  # scale k * s
                 ks = k * s
-                if any(X[i] < lo[i] * ks or X[i] > hi[i] * ks for i in range(3)):
+                if any(X[i] < region.lo[i] * ks or X[i] > region.hi[i] * ks for i in range(3)):
                     continue
-                if where_in_polygon((X[u], X[w]), poly, ks) >= 0:
+                if region.classify((X[region.u], X[region.w]), ks) >= 0:
                     return True
             return False
 
@@ -554,7 +545,8 @@ class Case:
                 n = tuple(-x for x in n)
             S = tuple(a[i] + b[i] + c[i] for i in range(3))
             to_holes = [tuple(3 * h[i] - S[i] for i in range(3)) for h in holes]
-            if any(dot(D, n) > 0 and not blocked(S, 3, D, True) for D in to_holes):
+            own = self.on_facet.get(tuple(sorted(f)), ())
+            if any(dot(D, n) > 0 and not blocked(S, 3, D, True, own) for D in to_holes):
                 proven.add(root(f))
                 continue
             dirs = [n]
@@ -562,7 +554,7 @@ class Case:
                 r = tuple(self.rng.randint(-10**9, 10**9) for _ in range(3))
                 if dot(r, n):
                     dirs.append(r if dot(r, n) > 0 else tuple(-x for x in r))
-            if not all(blocked(S, 3, D, False) for D in dirs):
+            if not all(blocked(S, 3, D, False, own) for D in dirs):
                 proven.add(root(f))
                 continue
             unproven.append(f)
@@ -571,6 +563,85 @@ class Case:
             self.fail(f"{len(unproven)} boundary faces whose outside is not shown exterior (no ray "
                       f"to infinity or a hole point misses the facets), e.g. {min(unproven)}")
         self.notes.append(f"{len(self.boundary)} boundary faces shown to face the exterior")
+
+
+class FacetRegion:
+    """A facet (integer coordinates) in the projection along the dominant axis of its largest
+    polygon's normal: its polygons of three or more corners (loops), each solid or void. A loop
+    is void when it is the innermost loop around one of the facet's hole points: the hole takes
+    out what that loop encloses, except the loops inside it (islands, which segments separate
+    from the hole point). The facet is the set of points whose innermost enclosing loop is
+    solid; loops either nest or have disjoint insides, as in a valid PLC."""
+
+    def __init__(self, loops, holes):
+        normals = []
+        for q in loops:
+            n = (0, 0, 0)
+            for k in range(len(q)):
+                n = tuple(s + t for s, t in zip(n, cross(q[k], q[(k + 1) % len(q)])))
+            normals.append(n)
+        main = max(range(len(loops)), key=lambda i: dot(normals[i], normals[i]))
+        self.normal, self.main = normals[main], loops[main]
+        self.axis = max(range(3), key=lambda k: abs(self.normal[k]))
+        self.u, self.w = (self.axis + 1) % 3, (self.axis + 2) % 3
+        self.lo = [min(x[k] for q in loops for x in q) for k in range(3)]
+        self.hi = [max(x[k] for q in loops for x in q) for k in range(3)]
+        # Twice the projected areas; loops of none (corners on a line) bound nothing.
+        area2 = [abs(n[self.axis]) for n in normals]
+        keep = [i for i in range(len(loops)) if area2[i]]
+        self.loops = [[(x[self.u], x[self.w]) for x in loops[i]] for i in keep]
+        self.areas = [area2[i] for i in keep]
+        self.parent = [self.innermost_around_loop(i) for i in range(len(self.loops))]
+        self.void = [False] * len(self.loops)
+        for h in holes:
+            i = self.innermost((h[self.u], h[self.w]), 1)
+            if i is not None:
+                self.void[i] = True
+        # A solid loop adds its area where it starts the facet (at the top or inside a void
+        # loop); a void loop takes its area out of the solid loop around it.
+        self.area2 = 0
+        for i, p in enumerate(self.parent):
+            outer_solid = p is not None and not self.void[p]
+            if not self.void[i] and not outer_solid:
+                self.area2 += self.areas[i]
+            elif self.void[i] and outer_solid:
+                self.area2 -= self.areas[i]
+
+    def innermost_around_loop(self, i):
+        """The smallest loop, other than loop i, whose closure holds loop i and whose inside
+        holds one of its corners or edge midpoints."""
+        best = None
+        q = self.loops[i]
+        for j, r in enumerate(self.loops):
+            if j == i or self.areas[j] <= self.areas[i]:
+                continue
+            if any(where_in_polygon(x, r, 1) < 0 for x in q):
+                continue
+            mids = [(q[k][0] + q[k - 1][0], q[k][1] + q[k - 1][1]) for k in range(len(q))]
+            if not (any(where_in_polygon(x, r, 1) > 0 for x in q)
+                    or any(where_in_polygon(m, r, 2) > 0 for m in mids)):
+                continue
+            if best is None or self.areas[j] < self.areas[best]:
+                best = j
+        return best
+
+    def innermost(self, pt, scale):
+        """The smallest loop whose inside holds pt / scale (None if there is none)."""
+        best = None
+        for j, r in enumerate(self.loops):
+            if where_in_polygon(pt, r, scale) > 0 and (best is None or self.areas[j] < self.areas[best]):
+                best = j
+        return best
+
+    def classify(self, pt, scale):
+        """1 if pt / scale (projected) lies inside the facet, 0 on a loop, -1 outside."""
+        if any(where_in_polygon(pt, r, scale) == 0 for r in self.loops):
+            return 0
+        i = self.innermost(pt, scale)
+        return 1 if i is not None and not self.void[i] else -1
+
+    def perimeter(self):
+        return sum(math.dist(r[k], r[k - 1]) for r in self.loops for k in range(len(r)))
 
 
 def contains(q, x):

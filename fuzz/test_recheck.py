@@ -30,14 +30,20 @@ def cells_lines(cells, per):
                                       for k, c in enumerate(cells, 1)]
 
 
+def write_case(d, files):
+    """Writes each (ending, lines) file of one case into directory `d`; returns their paths."""
+    paths = []
+    for ending, lines in files:
+        paths.append(os.path.join(d, "case" + ending))
+        with open(paths[-1], "w") as f:
+            f.write("\n".join(lines) + "\n")
+    return paths
+
+
 def run_recheck(script, files):
     """Writes each (ending, lines) file of one case and runs `script` over them."""
     with tempfile.TemporaryDirectory() as d:
-        paths = []
-        for ending, lines in files:
-            paths.append(os.path.join(d, "case" + ending))
-            with open(paths[-1], "w") as f:
-                f.write("\n".join(lines) + "\n")
+        paths = write_case(d, files)
         r = subprocess.run([sys.executable, os.path.join(HERE, script)] + paths,
                            capture_output=True, text=True)
         return r.returncode, r.stdout
@@ -69,10 +75,16 @@ def centred_cube():
 
 
 class Recheck3d(unittest.TestCase):
-    def run_case(self, pts, tets, faces, facets, input_pts=None, holes=()):
+    def run_case(self, pts, tets, faces, facets, input_pts=None, holes=(), facet_holes=None):
+        """`facets`: polygons, or lists of polygons; `facet_holes`: facet index -> its hole
+        points."""
         poly = points_lines(input_pts or pts) + [f"{len(facets)} 0"]
-        for q in facets:
-            poly += ["1", f"{len(q)} {' '.join(map(str, q))}"]
+        for k, q in enumerate(facets):
+            loops = q if isinstance(q[0], (tuple, list)) else [q]
+            fh = (facet_holes or {}).get(k, [])
+            poly += [f"{len(loops)} {len(fh)}"]
+            poly += [f"{len(p)} {' '.join(map(str, p))}" for p in loops]
+            poly += [f"{j} {h[0]!r} {h[1]!r} {h[2]!r}" for j, h in enumerate(fh, 1)]
         poly += [f"{len(holes)}"] + [f"{k} {h[0]!r} {h[1]!r} {h[2]!r}"
                                      for k, h in enumerate(holes, 1)] + ["0"]
         return run_recheck("recheck3d.py", [(".poly", poly), (".node", points_lines(pts)),
@@ -188,6 +200,78 @@ class Recheck3d(unittest.TestCase):
         self.assertEqual(code, 1, out)
         self.assertIn("facets not covered", out)
         self.assertIn("lie on no facet", out)
+
+
+def cube_with_a_square_on_its_bottom():
+    """centred_cube() with a square (vertices 10 to 13) inside its bottom facet, the bottom
+    triangulated through the square's edges: an annulus of 8 triangles and the square's 2."""
+    pts = {i + 1: p for i, p in enumerate(CUBE)}
+    pts[9] = (0.5, 0.5, 0.5)
+    pts.update({10: (0.25, 0.25, 0.0), 11: (0.75, 0.25, 0.0), 12: (0.75, 0.75, 0.0),
+                13: (0.25, 0.75, 0.0)})
+    faces = [(1, 2, 11), (1, 11, 10), (2, 4, 12), (2, 12, 11), (4, 3, 13), (4, 13, 12),
+             (3, 1, 10), (3, 10, 13), (10, 11, 12), (10, 12, 13)]
+    for a, b, c, d in CUBE_FACETS[1:]:
+        faces += [(a, b, c), (a, c, d)]
+    tets = [positive(pts, f + (9,)) for f in faces]
+    facets = [[CUBE_FACETS[0], (10, 11, 12, 13)]] + CUBE_FACETS[1:]
+    return pts, tets, faces, facets
+
+
+class FacetsOfSeveralPolygons(unittest.TestCase):
+    run_case = Recheck3d.run_case
+
+    def test_square_inside_a_facet_passes(self):
+        # The inner square bounds part of the facet: the facet is the whole bottom.
+        pts, tets, faces, facets = cube_with_a_square_on_its_bottom()
+        code, out = self.run_case(pts, tets, faces, facets)
+        self.assertEqual(code, 0, out)
+        self.assertIn("6 facets checked", out)
+
+    def test_hole_in_a_facet_covered_fails(self):
+        # A hole point inside the square takes the square out of the facet (its 2 triangles
+        # are then on no facet); one between the squares takes out the annulus and leaves the
+        # inner square, an island (the annulus's 8 triangles are on no facet).
+        for hole, off in (((0.5, 0.5, 0.0), 2), ((0.1, 0.5, 0.0), 8)):
+            with self.subTest(hole=hole):
+                pts, tets, faces, facets = cube_with_a_square_on_its_bottom()
+                code, out = self.run_case(pts, tets, faces, facets, facet_holes={0: [hole]})
+                self.assertEqual(code, 1, out)
+                self.assertIn(f"{off} boundary faces lie on no facet", out)
+
+
+class RecheckIfFloat(unittest.TestCase):
+    """fuzz/recheck3d_if_float.sh: a verify3d.py failure is rechecked only when every failed
+    claim is one it decides in floating point."""
+
+    def judge(self, verify_output):
+        pts, tets, faces = centred_cube()
+        poly = points_lines(pts) + [f"{len(CUBE_FACETS)} 0"]
+        for q in CUBE_FACETS:
+            poly += ["1", f"{len(q)} {' '.join(map(str, q))}"]
+        poly += ["0", "0"]
+        with tempfile.TemporaryDirectory() as d:
+            out, *paths = write_case(d, [
+                (".out", [verify_output]), (".poly", poly), (".node", points_lines(pts)),
+                (".ele", cells_lines(tets, "4 0")), (".face", cells_lines(faces, "0"))])
+            return subprocess.run([os.path.join(HERE, "recheck3d_if_float.sh"), out] + paths,
+                                  capture_output=True).returncode
+
+    PARTLY = ("  [FAIL] conformity   facets=6\n"
+              "         ! 1 facets only partly covered by output faces, e.g. facet 1\n")
+
+    def test_float_claim_on_a_right_mesh_is_rechecked(self):
+        self.assertEqual(self.judge(self.PARTLY + "RESULT: FAILED\n"), 0)
+
+    def test_failed_delaunay_check_stands(self):
+        self.assertEqual(self.judge(self.PARTLY + "  [FAIL] delaunay     violating_tets=1\n"), 1)
+
+    def test_other_conformity_claim_stands(self):
+        self.assertEqual(self.judge("  [FAIL] conformity   facets=6\n"
+                                    "         ! 2 boundary faces lie off the facets\n"), 1)
+
+    def test_passing_output_is_not_a_recheck(self):
+        self.assertEqual(self.judge("  [PASS] topology\nRESULT: OK\n"), 1)
 
 
 class CampaignCases(unittest.TestCase):

@@ -8,8 +8,8 @@
 # segment is a chain of output edges or lies outside the domain. Likewise a 3D case that
 # verify3d.py fails only on what it measures in floating point (tets not winding once around a
 # vertex or edge, facets partly covered, segment pieces, sides not shown exterior) is decided
-# again exactly by fuzz/recheck3d.py. Prints each failing case and the counts; exit status 1 if
-# any case fails.
+# again exactly by fuzz/recheck3d.py (see fuzz/recheck3d_if_float.sh). Prints each failing case
+# and the counts; exit status 1 if any case fails.
 #   fuzz/verify_campaign.sh DIR [TOOLS-DIR]
 set -u
 dir=${1:?usage: verify_campaign.sh DIR [TOOLS-DIR]}
@@ -17,8 +17,6 @@ tools=${2:-$(dirname "$0")/../../shared/tools}
 pass=0
 rechecked=0
 fail=0
-# verify3d.py's messages for what it sums or measures in floating point.
-float_claims='do not wind exactly once\|only partly covered by output faces\|segment pieces are not unions of output edges\|could not be proven exterior'
 for poly in "$dir"/r*.poly; do
     [ -e "$poly" ] || continue
     b=${poly%.poly}
@@ -40,13 +38,11 @@ for poly in "$dir"/r*.poly; do
         fi
     fi
     if [ $status -ne 0 ] && [ -e "$b.face" ] \
-        && ! echo "$out" | grep '\[FAIL\]' | grep -qv '\[FAIL\] \(topology\|conformity\)' \
-        && ! echo "$out" | grep '^ *! ' | grep -qv "$float_claims"; then
-        if python3 "$(dirname "$0")/recheck3d.py" "$poly" "$b.node" "$b.ele" "$b.face" > /dev/null; then
-            rechecked=$((rechecked + 1))
-            echo "RECHECKED $b: verify3d.py's failure does not stand the exact recheck (fuzz/recheck3d.py)"
-            continue
-        fi
+        && echo "$out" | "$(dirname "$0")/recheck3d_if_float.sh" /dev/stdin \
+            "$poly" "$b.node" "$b.ele" "$b.face"; then
+        rechecked=$((rechecked + 1))
+        echo "RECHECKED $b: verify3d.py's failure does not stand the exact recheck (fuzz/recheck3d.py)"
+        continue
     fi
     if [ $status -eq 0 ]; then
         pass=$((pass + 1))

@@ -18,8 +18,7 @@
 //! - **slabs**: boxes 16 to 64 times wider than thick.
 //!
 //! Each family is meshed with `-p`, `-pq`, `-pq1.414` and `-pq1.414Y` (TetGen's switches, parsed
-//! by idmesh's TetGen parser); brackets keep their surface only without the fillet (see
-//! [`bracket_with_a_thin_facet_fillet_keeping_the_surface`]).
+//! by idmesh's TetGen parser).
 //!
 //! Every family meets the checker's rule for asserting the bounds (no input angle below 90°:
 //! polygon angles here are at least 90°, dihedral angles 90° or the polygon's), so the bound
@@ -566,35 +565,24 @@ family!(tubes, tube_raw(), tube, ALL);
 family!(fillet_blocks, fillet_raw(), fillet_block, ALL);
 family!(thin_slabs, slab_raw(), slab, ALL);
 
-// Keeping the surface (-Y), brackets are meshed without their inner fillet: see the ignored
-// reproducer below.
+// Keeping the surface (-Y), brackets with their inner fillet too (see the reproducer below).
 family!(
     brackets_with_holes_keeping_the_surface,
-    bracket_raw().prop_map(|mut r| {
-        r.4 = None;
-        r
-    }),
+    bracket_raw(),
     bracket,
     [3]
 );
 
-/// Known failure (issue 12): a bracket whose concave inner fillet is made of 16 facets 560
-/// times longer than wide, with a hole in each leg, at `-pq1.414Y`. Since the facets around a
-/// Steiner point are re-triangulated by the 2D kernel (`FacetTriangulation::polygon`, no longer
-/// ear clipping) the flat tet described next is gone and the mesh passes the exact `validate()`,
-/// but `verify3d.py` still reports tets not winding once around one vertex (a floating-point
-/// claim; `fuzz/recheck3d.py`'s exact star check passes, its facet check does not take facets
-/// with holes), so the test stays ignored and the `-Y` family above keeps leaving fillets out.
-/// Before, taking the boundary
-/// Steiner points of the fillet's edges off the surface leaves a moved point within rounding
-/// of a fillet facet (a tet of volume 7e-18 with edges near 2: the checker calls it flat), and
-/// on a sister part (20 fillet facets) no point of a split point's wedge sees its whole star
-/// ("internal error"). TetGen 1.5 meshes both. The star of such a point holds faces that pass
-/// within 1e-17 of it (measured: a Steiner point rounded off a fillet facet, and points moved
-/// just off the surface before it); re-coning the star from one of its own vertices was tried
-/// and does not help either (no vertex sees all of its faces). Left to do.
+/// A bracket whose concave inner fillet is made of 16 facets 560 times longer than wide, with a
+/// hole in each leg, at `-pq1.414Y` (issue 12). Taking the boundary Steiner points of the
+/// fillet's edges off the surface re-triangulates each fillet facet around them; with ear
+/// clipping's triangles that left a tet of volume 7e-18 with edges near 2, all four corners in
+/// the plane of a fillet facet. The re-triangulation is now the facet polygon's constrained
+/// Delaunay triangulation (`FacetTriangulation::polygon`), and the part meshes. In the CAD
+/// conformance step `verify3d.py` reports tets not winding once around one of its vertices, a
+/// claim it decides in floating point; `fuzz/recheck3d.py` decides it exactly, and the mesh
+/// passes.
 #[test]
-#[ignore = "known failure: -Y on a concave fillet of thin facets (issue 12)"]
 fn bracket_with_a_thin_facet_fillet_keeping_the_surface() {
     let raw: BracketRaw = (
         2.5969355936561294,

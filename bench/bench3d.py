@@ -50,6 +50,7 @@ peak memory <= TetGen's; refinement cases: idmesh time <= 1.0 x TetGen's and tet
 TetGen's.
 
 Usage: python3 bench/bench3d.py [--cases random,cube,example] [--quick] [--points N] [--seed S]
+                                [--volume V]
                                 [--repeat K] [--verify] [--quiet] [--markdown] [--no-cgal] [--no-tetgen]
                                 [--json OUT] [--render OUT.json] [--selftest] [--wait-idle S]
                                 [--whole-process]
@@ -1079,7 +1080,7 @@ def run_refine(name, a, exes, use_tetgen):
     """A refinement case: both command lines on their own copies of the same .poly file,
     interleaved; with --verify, verify3d on the first idmesh mesh. Returns the report entry."""
     spec = REFINE_CASES[name]
-    volume = spec["quick" if a.quick else "full"]
+    volume = a.volume or spec["quick" if a.quick else "full"]
     switches = f"pq{RADIUS_EDGE}a{volume}"
     last = "Q" if a.quiet else "V"
     idmesh = exes.get("cli")
@@ -1147,6 +1148,9 @@ def main():
                     help=f"{QUICK_POINTS:,} points; ~100k-tet volume bounds for the refinement "
                          "cases")
     ap.add_argument("--points", type=int, help="number of points (overrides --quick)")
+    ap.add_argument("--volume", help="volume bound of the refinement cases, a decimal string "
+                                     "(overrides their full and --quick bounds; 0.0000002 gives "
+                                     "the cube about 10,000,000 tets)")
     ap.add_argument("--seed", type=int, default=SEED)
     ap.add_argument("--repeat", type=int, default=3, help="runs per tool (median time)")
     ap.add_argument("--verify", action="store_true",

@@ -3,7 +3,9 @@
 //!
 //! Pipeline: validate the input (and scale it up by a power of two when its coordinates are
 //! so small that the exact predicates would underflow); insert every input point
-//! (Bowyer–Watson, BRIO/Hilbert order, walking point location); insert every segment as a
+//! (Bowyer–Watson, BRIO/Hilbert order, walking point location; without segments the whole run
+//! names the points by their rank in that order, and the names go back at the end); insert
+//! every segment as a
 //! constrained edge (no Steiner point); classify exterior, holes and regions by flooding up to
 //! segments and carve them away; split encroached segments until the constrained triangulation
 //! is Delaunay (paper Fig. 2, `Force`); then eliminate skinny and oversized triangles (paper

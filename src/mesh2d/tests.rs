@@ -2,6 +2,7 @@
 #![allow(clippy::field_reassign_with_default)]
 
 use super::*;
+use crate::error::InputError;
 use crate::input2d::{Pslg, Region};
 
 fn square_with_hole() -> Pslg {
@@ -631,4 +632,64 @@ fn flip_an_edge(m: &TriMesh, from: usize) -> TriMesh {
         }
     }
     panic!("no edge to flip");
+}
+
+/// Without segments the run names the points by their insertion rank; the mesh comes back in
+/// the input's names: each input point at its own index with its own marker, the same
+/// triangles whatever order the points come in, and a duplicate named by input indices.
+#[test]
+fn a_point_set_comes_back_in_input_names() {
+    let n = 500;
+    let mut s = 0x2545_f491_4f6c_dd1du64;
+    let mut next = || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let pts: Vec<[f64; 2]> = (0..n).map(|_| [next(), next()]).collect();
+    let mut p = Pslg::default();
+    p.points = pts.clone();
+    p.point_markers = (0..n as i32).map(|i| i + 10).collect();
+    // Triangles as sorted triples of input names.
+    let tris = |m: &TriMesh, name: &dyn Fn(u32) -> u32| {
+        let mut v: Vec<[u32; 3]> = m
+            .triangles
+            .iter()
+            .map(|t| {
+                let mut t = t.map(name);
+                t.sort_unstable();
+                t
+            })
+            .collect();
+        v.sort_unstable();
+        v
+    };
+    for min_angle in [None, Some(25.0)] {
+        let mut o = Options::default();
+        o.min_angle = min_angle;
+        let m = triangulate(&p, &o).unwrap();
+        m.validate().unwrap();
+        assert_eq!(&m.vertices[..n], &pts[..]);
+        assert_eq!(&m.vertex_markers[..n], &p.point_markers[..]);
+        if min_angle.is_some() {
+            assert!(m.steiner_points > 0);
+            continue;
+        }
+        let mut r = p.clone();
+        r.points.reverse();
+        r.point_markers.reverse();
+        let back = triangulate(&r, &o).unwrap();
+        let last = n as u32 - 1;
+        assert_eq!(tris(&m, &|v| v), tris(&back, &|v| last - v));
+    }
+    let mut d = p.clone();
+    d.points.push(pts[17]);
+    d.point_markers.push(0);
+    match triangulate(&d, &Options::default()) {
+        Err(Error::Input(InputError::DuplicatePoint { first, second })) => {
+            assert_eq!((first, second), (17, n))
+        }
+        other => panic!("{other:?}"),
+    }
 }

@@ -66,13 +66,15 @@ fn run_scaled(pslg: &Pslg, opts: &Options, s: f64) -> Result<TriMesh, Error> {
 /// output, so the whole run, the end-of-run check included, works on the points renamed by
 /// their rank in the insertion order ([`brio_order`]) and stored in that order; the names go
 /// back on the checked mesh ([`unrank`], a renaming of vertices that changes no triangle, no
-/// coordinate and no adjacency). Neighbouring triangles then have neighbouring vertex names:
+/// coordinate and no adjacency), and a fault the check finds is told in the input's names. Neighbouring triangles then have neighbouring vertex names:
 /// the check reads the coordinates nearly in memory order, where in input order (random, for
 /// scattered points) it missed the cache at nearly every triangle (a third of a 1M-point run).
 /// With segments, the points are renamed for the insertion only ([`insert_points`]).
 fn mesh(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
     if !pslg.segments.is_empty() {
-        return mesh_in_order(pslg, opts, false);
+        let (m, fixed) = mesh_in_order(pslg, opts, false)?;
+        check_output(&m, fixed, opts)?;
+        return Ok(m);
     }
     let order = brio_order(&pslg.points);
     let permute = |v: &[i32]| -> Vec<i32> {
@@ -90,7 +92,7 @@ fn mesh(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
         holes: pslg.holes.clone(),
         regions: pslg.regions.clone(),
     };
-    let mut m = mesh_in_order(&ranked, opts, true).map_err(|e| match e {
+    let (mut m, fixed) = mesh_in_order(&ranked, opts, true).map_err(|e| match e {
         Error::Input(e) => Error::Input(match e.map_items(&|_, i| order[i] as usize) {
             InputError::DuplicatePoint { first, second } => InputError::DuplicatePoint {
                 first: first.min(second),
@@ -100,8 +102,13 @@ fn mesh(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
         }),
         e => e,
     })?;
+    let checked = check_output(&m, fixed, opts);
     unrank(&mut m, &order, &pslg.points);
-    Ok(m)
+    match checked {
+        Ok(()) => Ok(m),
+        // Told in the input's names.
+        Err(e) => Err(check_output(&m, fixed, opts).err().unwrap_or(e)),
+    }
 }
 
 /// Gives the input points of `m`, meshed renamed by their rank in `order` (input point
@@ -128,9 +135,10 @@ fn unrank(m: &mut TriMesh, order: &[u32], points: &[[f64; 2]]) {
     }
 }
 
-/// [`mesh`], on `pslg`'s points in insertion order already (`ranked`: point `k` is the `k`-th
-/// inserted) or in any order (they are ordered for the insertion).
-fn mesh_in_order(pslg: &Pslg, opts: &Options, ranked: bool) -> Result<TriMesh, Error> {
+/// [`mesh`] without the output check, on `pslg`'s points in insertion order already
+/// (`ranked`: point `k` is the `k`-th inserted) or in any order (they are ordered for the
+/// insertion); also whether some segments were fixed (no Steiner points on them).
+fn mesh_in_order(pslg: &Pslg, opts: &Options, ranked: bool) -> Result<(TriMesh, bool), Error> {
     // Which segments may be split (Triangle's -YY, -Y, neither); one policy serves all three.
     let policy = if opts.no_segment_steiner {
         SegmentSteiner::Nowhere
@@ -188,20 +196,23 @@ fn mesh_in_order(pslg: &Pslg, opts: &Options, ranked: bool) -> Result<TriMesh, E
     }
     stage(Stage::Output, || (0, 0))?;
     let mesh = output(&mut r, n, pslg, opts)?;
-    // Never hand back a broken mesh as a success: the structure and the local empty-circle
-    // rule (exact, linear) always; the global empty-circle search too in debug builds and in
-    // `validate()`. With fixed segments, or conformity cut short by the budget, the mesh is
-    // only constrained Delaunay, and segments are exempt from the local rule.
+    Ok((mesh, r.policy != SegmentSteiner::Anywhere))
+}
+
+/// Never hand back a broken mesh as a success: the structure and the local empty-circle rule
+/// (exact, linear) always; the global empty-circle search too in debug builds and in
+/// `validate()`. With fixed segments (`fixed`), or conformity cut short by the budget, the
+/// mesh is only constrained Delaunay, and segments are exempt from the local rule.
+fn check_output(mesh: &TriMesh, fixed: bool, opts: &Options) -> Result<(), Error> {
     let threads = crate::threads::resolve(opts.threads)?;
-    let check = if r.policy != SegmentSteiner::Anywhere || !mesh.complete {
-        super::validate::validate_constrained(&mesh, threads)
+    let check = if fixed || !mesh.complete {
+        super::validate::validate_constrained(mesh, threads)
     } else if cfg!(debug_assertions) {
         mesh.validate()
     } else {
-        super::validate::validate_final(&mesh, threads)
+        super::validate::validate_final(mesh, threads)
     };
-    check.map_err(|e| Error::Internal(format!("output check failed: {e}")))?;
-    Ok(mesh)
+    check.map_err(|e| Error::Internal(format!("output check failed: {e}")))
 }
 
 fn check_options(o: &Options) -> Result<(), Error> {

@@ -155,7 +155,7 @@ fn triangle_facet(t: [u32; 3]) -> Facet {
 /// each of its flat faces triangulated on the points lying in it.
 fn hull_triangles(points: &[[f64; 3]]) -> Result<Vec<[u32; 3]>, Error> {
     // Its faces are the hull triangles.
-    Ok(super::delaunay::delaunay(points)?.faces)
+    Ok(super::delaunay::delaunay(points, |_| Ok(()))?.faces)
 }
 
 /// Per hull triangle, the id (0, 1, ...) of its group: triangles joined across shared edges

@@ -2,8 +2,8 @@
 //! insert them in BRIO + Hilbert order into one [`Tets`] kernel, and write a [`TetMesh`].
 //!
 //! Internally vertices are numbered in insertion order, so that points inserted one after the
-//! other (close along the Hilbert curve) are also close in memory; the output maps them back to
-//! the input numbering.
+//! other (close along the Hilbert curve) are also close in memory; the output check runs in
+//! that numbering too, and the mesh is then renamed back to the input numbering.
 
 use super::order::brio_hilbert_order;
 use super::store::{Insertion, TetId, Tets, VertexId, FACE, GHOST};
@@ -120,18 +120,49 @@ pub(crate) fn build(points: &[[f64; 3]]) -> Result<(Tets, Vec<u32>), Error> {
     Ok((tets, input_of))
 }
 
-/// The Delaunay tetrahedralization of `points` as a [`TetMesh`] (see [`super::delaunay3d`]).
-pub(crate) fn delaunay(points: &[[f64; 3]]) -> Result<TetMesh, Error> {
+/// The Delaunay tetrahedralization of `points` as a [`TetMesh`] (see [`super::delaunay3d`]),
+/// passed through `check` first.
+///
+/// The check runs on the mesh still in the kernel's names (insertion order), where tets made
+/// one after the other have vertices close in memory: in input order (random, for scattered
+/// points) it missed the cache at nearly every tet. The names go back afterwards (a renaming
+/// of vertices, which changes no tet, coordinate or adjacency); a fault is told in the
+/// input's names.
+pub(crate) fn delaunay(
+    points: &[[f64; 3]],
+    check: impl Fn(&TetMesh) -> Result<(), Error>,
+) -> Result<TetMesh, Error> {
     use crate::progress::{stage, Stage};
     stage(Stage::Delaunay, || (0, points.len() as u64))?;
     let (tets, input_of) = build(points)?;
     stage(Stage::Output, || (0, tets.num_slots() as u64))?;
-    Ok(to_mesh(&tets, &input_of, points))
+    let mut mesh = to_mesh(&tets);
+    mesh.vertices = tets.into_points();
+    let checked = check(&mesh);
+    unrank(&mut mesh, &input_of, points);
+    match checked {
+        Ok(()) => Ok(mesh),
+        Err(e) => Err(check(&mesh).err().unwrap_or(e)),
+    }
 }
 
-/// Writes the real tets of `tets` as a [`TetMesh`] whose vertex `input_of[k]` is kernel vertex
-/// `k`: positive tets, neighbours (`NONE` on the hull), hull faces oriented outward.
-fn to_mesh(tets: &Tets, input_of: &[u32], points: &[[f64; 3]]) -> TetMesh {
+/// Gives mesh `m`, made in the kernel's names (input point `input_of[k]` as vertex `k`), the
+/// input's names and coordinates.
+fn unrank(m: &mut TetMesh, input_of: &[u32], points: &[[f64; 3]]) {
+    let name = |v: u32| input_of[v as usize];
+    for t in &mut m.tets {
+        *t = t.map(name);
+    }
+    for f in &mut m.faces {
+        *f = f.map(name);
+    }
+    m.vertices = points.to_vec();
+}
+
+/// Writes the real tets of `tets` as a [`TetMesh`] in the kernel's vertex names (the caller
+/// sets the vertices): positive tets, neighbours (`NONE` on the hull), hull faces oriented
+/// outward.
+fn to_mesh(tets: &Tets) -> TetMesh {
     let slots = tets.num_slots();
     let mut out_id = vec![NONE; slots];
     let mut count = 0u32;
@@ -146,7 +177,6 @@ fn to_mesh(tets: &Tets, input_of: &[u32], points: &[[f64; 3]]) -> TetMesh {
             }
         }
     }
-    let map = |v: u32| input_of[v as usize];
     let mut out_tets = Vec::with_capacity(count as usize);
     let mut neighbors = Vec::with_capacity(count as usize);
     let mut faces = Vec::with_capacity(hull);
@@ -160,16 +190,16 @@ fn to_mesh(tets: &Tets, input_of: &[u32], points: &[[f64; 3]]) -> TetMesh {
             // from outside the hull).
             let (r, f) = tets.neighbor(t, k);
             let rv = tets.verts(r);
-            faces.push(FACE[f].map(|i| map(rv[i])));
+            faces.push(FACE[f].map(|i| rv[i]));
             continue;
         }
-        out_tets.push(v.map(map));
+        out_tets.push(v);
         neighbors.push([0, 1, 2, 3].map(|f| out_id[tets.neighbor(t, f).0 as usize]));
     }
     drop(out_id);
-    let n = points.len();
+    let n = tets.num_vertices();
     TetMesh {
-        vertices: points.to_vec(),
+        vertices: Vec::new(),
         vertex_markers: vec![0; n],
         num_input_vertices: n,
         tets: out_tets,

@@ -324,9 +324,7 @@ pub fn delaunay3d(points: &[[f64; 3]]) -> Result<TetMesh, Error> {
     }
     catch_panic("", || {
         let threads = crate::threads::count()?;
-        let mesh = delaunay::delaunay(points)?;
-        validate::check_output(&mesh, threads)?;
-        Ok(mesh)
+        delaunay::delaunay(points, |m| validate::check_output(m, threads))
     })
 }
 

@@ -245,6 +245,11 @@ impl Tets {
         self.pts[v as usize]
     }
 
+    /// The coordinates of every vertex pushed, by id (the kernel is gone).
+    pub fn into_points(self) -> Vec<[f64; 3]> {
+        self.pts
+    }
+
     /// Number of vertices pushed (inserted or not).
     #[inline]
     pub fn num_vertices(&self) -> usize {

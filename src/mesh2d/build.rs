@@ -66,9 +66,10 @@ fn run_scaled(pslg: &Pslg, opts: &Options, s: f64) -> Result<TriMesh, Error> {
 /// output, so the whole run, the end-of-run check included, works on the points renamed by
 /// their rank in the insertion order ([`brio_order`]) and stored in that order; the names go
 /// back on the checked mesh ([`unrank`], a renaming of vertices that changes no triangle, no
-/// coordinate and no adjacency), and a fault the check finds is told in the input's names. Neighbouring triangles then have neighbouring vertex names:
-/// the check reads the coordinates nearly in memory order, where in input order (random, for
-/// scattered points) it missed the cache at nearly every triangle (a third of a 1M-point run).
+/// coordinate and no adjacency), and a fault the check finds is told in the input's names.
+/// Neighbouring triangles then have neighbouring vertex names: the check reads the coordinates
+/// nearly in memory order, where in input order (random, for scattered points) it missed the
+/// cache at nearly every triangle (a third of a 1M-point run).
 /// With segments, the points are renamed for the insertion only ([`insert_points`]).
 fn mesh(pslg: &Pslg, opts: &Options) -> Result<TriMesh, Error> {
     if !pslg.segments.is_empty() {

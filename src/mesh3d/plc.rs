@@ -419,8 +419,10 @@ impl Mesher<'_> {
     }
 
     /// Brings subsegment `a b` back into the facet meshes that lost it to their outside
-    /// scaffolding ([`FacetMesh::recover_edge`]), before it is judged missing and split.
-    fn recover_in_facets(&mut self, a: u32, b: u32, e: u32) {
+    /// scaffolding ([`FacetMesh::recover_edge`]), before it is judged missing and split;
+    /// whether some facet mesh still lacks it.
+    fn recover_in_facets(&mut self, a: u32, b: u32, e: u32) -> bool {
+        let mut missing = false;
         for i in 0..self.feat.edges[e as usize].facets.len() {
             let f = self.feat.edges[e as usize].facets[i];
             let fm = &self.fmesh[f as usize];
@@ -433,7 +435,9 @@ impl Mesher<'_> {
             if let Some(ch) = self.fmesh[f as usize].recover_edge(a, b, &self.pts, &is_sub, &flat) {
                 self.apply_facet_change(f, ch);
             }
+            missing |= !self.fmesh[f as usize].has_edge(a, b);
         }
+        missing
     }
 
     /// Inserts vertex `v` into the 3D mesh. Provisional insertion is refused (nothing changes)

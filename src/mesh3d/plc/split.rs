@@ -6,17 +6,15 @@
 use super::*;
 
 impl Mesher<'_> {
-    /// Whether subsegment `ab` is missing from the 3D mesh or a facet mesh, or encroached.
-    pub(super) fn subseg_needs_split(&self, a: u32, b: u32, e: u32) -> bool {
+    /// Whether subsegment `ab` must be split: missing from a facet mesh (`missing_in_facets`,
+    /// as [`Mesher::recover_in_facets`] found) or from the 3D mesh, or encroached.
+    pub(super) fn subseg_needs_split(&self, a: u32, b: u32, missing_in_facets: bool) -> bool {
+        if missing_in_facets {
+            return true;
+        }
         let Some(t0) = self.tets.find_edge(a, b) else {
             return true;
         };
-        for &f in &self.feat.edges[e as usize].facets {
-            let fm = &self.fmesh[f as usize];
-            if fm.started() && !fm.has_edge(a, b) {
-                return true;
-            }
-        }
         if !self.sharp.is_empty() || self.opts.keep_surface {
             // Lazy mode (small input angles): vertices of nearby features would encroach each
             // other's subsegments forever; only refused circumcenters split them. Keeping the
@@ -48,8 +46,11 @@ impl Mesher<'_> {
         let Some(e) = self.feat.subseg(a, b) else {
             return Ok(());
         };
-        self.recover_in_facets(a, b, e);
-        if !force && !self.subseg_needs_split(a, b, e) && !self.seg_over_bound(a, b, e) {
+        let missing_in_facets = self.recover_in_facets(a, b, e);
+        if !force
+            && !self.subseg_needs_split(a, b, missing_in_facets)
+            && !self.seg_over_bound(a, b, e)
+        {
             return Ok(());
         }
         if force && self.below_floor(&[self.pts[a as usize], self.pts[b as usize]]) {

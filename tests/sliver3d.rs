@@ -284,6 +284,26 @@ fn fan_angles_excuse_no_sliver() {
     }
 }
 
+/// Tets refined after the sliver pass are held to the target too: in this rotated 15-gon
+/// prism (found by a property test) the full classification after the pass corrects the
+/// regions of hundreds of rounding slivers on the slanted facets, and the tets refined then
+/// kept a dihedral angle of 13.4° against the target of 18° when the pass did not run again.
+#[test]
+fn tets_refined_after_the_sliver_pass_meet_the_target() {
+    let jitter = [
+        (-0.07711946417596226, 0.0),
+        (-0.061994083341126, 0.9434459888432276),
+        (-0.7829951031428659, -0.9005011601113089),
+        (0.0, 0.0),
+    ];
+    let h = 2.1499763802005267;
+    let plc = cylinder(15, &jitter, h, &Frame::quaternion(9, 2, 2, 1));
+    let o = opts(1.414, std::f64::consts::PI * h, 300.0, Some(18.0));
+    if let Err(e) = mesh_within(&plc, &o) {
+        panic!("{e}");
+    }
+}
+
 /// A sliver whose first candidate points all make a new sliver gets more of them: this domed
 /// prism (found by a property test) ran out of sliver rounds with one of 5.9° left when each
 /// sliver had 13 candidates. Its apex has input angles of 17° (21 dome facets), and the

@@ -8,8 +8,9 @@ impl Mesher<'_> {
     /// Gives the tets made while conformity was broken (region [`UNKNOWN`]) their region, now
     /// that every subface is back in the 3D mesh: each connected group of them (across
     /// non-subfaces) takes the region of the known tets next to it, which regions cannot
-    /// cross. A group with no known neighbour, or with neighbours that disagree, falls back on
-    /// a full classification. Then the resolved tets are judged for quality.
+    /// cross; flat tets lying in one facet are not asked, as their side of it is arbitrary. A
+    /// group with no known neighbour, or with neighbours that disagree, falls back on a full
+    /// classification. Then the resolved tets are judged for quality.
     pub(super) fn resolve_unknown(&mut self) -> Result<(), Error> {
         let list = std::mem::take(&mut self.unknown);
         let mut comp = Vec::new();
@@ -38,6 +39,9 @@ impl Mesher<'_> {
                             stack.push(n);
                         }
                         RESOLVING => {}
+                        // A flat tet with all four vertices in one facet took its region from
+                        // whichever side the cavity that made it lay on: no evidence.
+                        _ if self.feat.in_one_facet(self.tets.verts(n)) => {}
                         r => match found {
                             None => found = Some(r),
                             Some(x) => agree &= x == r,

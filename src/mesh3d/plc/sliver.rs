@@ -96,6 +96,17 @@ const MAX_ROUNDS: u32 = 64;
 /// Tetrahedra to treat, with their vertices when found (a tet changed since is skipped).
 type Slivers = Vec<(u32, [u32; 4])>;
 
+/// Why a tet is not treated, once judged (see [`Mesher::collect_slivers`]).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Verdict {
+    /// It meets the target, or is below the size floor.
+    Fine,
+    /// A rounding sliver lying in one facet: the output drops or splits it.
+    OneFacet,
+    /// Next to a small input angle.
+    Exempt,
+}
+
 /// What the sliver removal pass did, for the `-V` progress lines.
 #[derive(Default, Debug)]
 struct SliverCounts {
@@ -141,38 +152,48 @@ impl Mesher<'_> {
     }
 
     /// The tets inside the domain missing the target that the pass treats, and how many others
-    /// miss it but are exempt (next to a small input angle). `fine` holds, per tet slot, the
-    /// vertices of a tet found to meet the target (or below the size floor) in an earlier
-    /// round: a slot holding the same vertices holds the same tet, and is not measured again.
+    /// miss it but are exempt (next to a small input angle). `seen` holds, per tet slot, the
+    /// vertices of the tet last judged there with a verdict that cannot change while the tet
+    /// lives: it meets the target (or is below the size floor), it is a rounding sliver in one
+    /// facet, or it is exempt. Each of those depends on the four vertices alone (their
+    /// positions, the features they lie on and the small-angle protection, all fixed once a
+    /// vertex is in), so a slot holding the same vertices is not judged again: the pass runs
+    /// this every round, and most tets, and on scanned models thousands of exempt ones, would
+    /// be measured and tested against the protection zones each time.
     fn collect_slivers(
         &self,
         target: f64,
-        fine: &mut Vec<[u32; 4]>,
+        seen: &mut Vec<([u32; 4], Verdict)>,
     ) -> Result<(Slivers, u64), Error> {
         let mut out = Vec::new();
         let mut exempt = 0;
-        fine.resize(self.tets.num_slots(), [NONE; 4]);
+        seen.resize(self.tets.num_slots(), ([NONE; 4], Verdict::Fine));
         for t in 0..self.tets.num_slots() as u32 {
             tick(|| (self.steiner, self.steiner))?;
             if !self.tets.alive(t) || self.tets.is_ghost(t) || self.region_of(t) >= UNKNOWN {
                 continue;
             }
             let vs = self.tets.verts(t);
-            if fine[t as usize] == vs {
-                continue;
-            }
-            let c = vs.map(|x| self.pts[x as usize]);
-            if !Self::is_sliver(c, target) || self.below_floor(&c) {
-                fine[t as usize] = vs;
-                continue;
-            }
-            if self.feat.in_one_facet(vs) {
-                continue;
-            }
-            if self.sharp.exempts_sliver(vs, &self.feat, &self.pts, target) {
+            let verdict = match seen[t as usize] {
+                (w, verdict) if w == vs => verdict,
+                _ => {
+                    let c = vs.map(|x| self.pts[x as usize]);
+                    let verdict = if !Self::is_sliver(c, target) || self.below_floor(&c) {
+                        Verdict::Fine
+                    } else if self.feat.in_one_facet(vs) {
+                        Verdict::OneFacet
+                    } else if self.sharp.exempts_sliver(vs, &self.feat, &self.pts, target) {
+                        Verdict::Exempt
+                    } else {
+                        out.push((t, vs));
+                        continue;
+                    };
+                    seen[t as usize] = (vs, verdict);
+                    verdict
+                }
+            };
+            if verdict == Verdict::Exempt {
                 exempt += 1;
-            } else {
-                out.push((t, vs));
             }
         }
         Ok((out, exempt))
@@ -187,9 +208,9 @@ impl Mesher<'_> {
         let mut counts = SliverCounts::default();
 
         let mut exhausted = false;
-        let mut fine = Vec::new();
+        let mut seen = Vec::new();
         'rounds: for round in 0..MAX_ROUNDS {
-            let (list, _) = self.collect_slivers(target, &mut fine)?;
+            let (list, _) = self.collect_slivers(target, &mut seen)?;
             if list.is_empty() {
                 break;
             }
@@ -219,7 +240,7 @@ impl Mesher<'_> {
                 break; // every demand was dropped (size floor): nothing more to gain
             }
         }
-        let (left, exempt) = self.collect_slivers(target, &mut fine)?;
+        let (left, exempt) = self.collect_slivers(target, &mut seen)?;
         counts.left = left.len() as u64;
         counts.exempt = exempt;
         if exhausted {

@@ -126,7 +126,7 @@ typedef enum idm_input_error {
    */
   IDM_INPUT_NON_FINITE_HOLE = 12,
   /**
-   * `item`: a hole seed outside the domain (or on a segment).
+   * `item`: a hole seed outside the domain (or on a segment, or in 3D on a facet).
    */
   IDM_INPUT_HOLE_OUTSIDE_DOMAIN = 13,
   /**
@@ -135,7 +135,7 @@ typedef enum idm_input_error {
    */
   IDM_INPUT_INVALID_REGION = 14,
   /**
-   * `item`: a region seed outside the domain (or on a segment).
+   * `item`: a region seed outside the domain (or on a segment, or in 3D on a facet).
    */
   IDM_INPUT_REGION_OUTSIDE_DOMAIN = 15,
   /**

@@ -66,7 +66,7 @@ pub enum InputError {
         /// The hole seed (of the facet, for facet holes).
         hole: usize,
     },
-    /// A hole seed lies outside the meshed domain (or on a segment).
+    /// A hole seed lies outside the meshed domain (or on a segment, or in 3D on a facet).
     HoleOutsideDomain {
         /// The hole seed (of the facet, for facet holes).
         hole: usize,
@@ -77,7 +77,7 @@ pub enum InputError {
         /// The region seed.
         region: usize,
     },
-    /// A region seed lies outside the meshed domain (or on a segment).
+    /// A region seed lies outside the meshed domain (or on a segment, or in 3D on a facet).
     RegionOutsideDomain {
         /// The region seed.
         region: usize,
@@ -468,7 +468,10 @@ impl fmt::Display for InputError {
             }
             NonFiniteHole { hole } => write!(f, "hole {hole} has a NaN or infinite coordinate"),
             HoleOutsideDomain { hole } => {
-                write!(f, "hole {hole} lies outside the domain or on a segment")
+                write!(
+                    f,
+                    "hole {hole} lies outside the domain or on its boundary (a segment or facet)"
+                )
             }
             NonFiniteRegion { region } => {
                 write!(
@@ -477,7 +480,7 @@ impl fmt::Display for InputError {
                 )
             }
             RegionOutsideDomain { region } => {
-                write!(f, "region {region} lies outside the domain or on a segment")
+                write!(f, "region {region} lies outside the domain or on its boundary (a segment or facet)")
             }
             MarkerCountMismatch {
                 what,

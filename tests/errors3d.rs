@@ -92,16 +92,7 @@ fn the_cube_and_its_near_misses_are_fine() {
 
 #[test]
 fn stacked_boxes_sharing_a_partition_facet_are_fine_only_when_sides_are_split() {
-    // Two unit boxes on top of each other: points 8-11 at z = 2; the middle square is facet 1
-    // of the cube and shared.
-    let mut p = cube();
-    for q in [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]] {
-        add(&mut p, [q[0], q[1], 2.0]);
-    }
-    p.facets.push(facet(&[&[8, 9, 10, 11]]));
-    for (a, b) in [(4, 5), (5, 6), (6, 7), (7, 4)] {
-        p.facets.push(facet(&[&[a, b, b + 4, a + 4]]));
-    }
+    let p = stacked_boxes();
     check_plc(&p).unwrap();
     // The same volume with each side as one tall rectangle: the partition's corners lie on
     // the tall rectangles' vertical edges without being their vertices.
@@ -675,4 +666,82 @@ fn an_open_surface_names_its_open_edges() {
         .unwrap()
         .validate()
         .unwrap();
+}
+
+/// Two unit boxes on top of each other: points 8-11 at z = 2; the middle square at z = 1 is
+/// facet 1 of the cube and shared.
+fn stacked_boxes() -> Plc {
+    let mut p = cube();
+    for q in [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]] {
+        add(&mut p, [q[0], q[1], 2.0]);
+    }
+    p.facets.push(facet(&[&[8, 9, 10, 11]]));
+    for (a, b) in [(4, 5), (5, 6), (6, 7), (7, 4)] {
+        p.facets.push(facet(&[&[a, b, b + 4, a + 4]]));
+    }
+    p
+}
+
+/// Meshing error, with its message.
+fn mesh_err(plc: &Plc) -> (InputError, String) {
+    match idmesh::tetrahedralize(plc, &idmesh::Options3::default()) {
+        Err(Error::Input(e)) => {
+            let msg = Error::Input(e.clone()).to_string();
+            (e, msg)
+        }
+        other => panic!(
+            "expected an input error, got {:?}",
+            other.map(|m| m.tets.len())
+        ),
+    }
+}
+
+#[test]
+fn a_seed_on_a_facet_names_no_side_and_is_refused() {
+    // The shared square is two subfaces: (0.25, 0.5) is inside one, the centre on their
+    // common diagonal whichever it is, (1, 0.5) on the square's edge (a subsegment), and
+    // (1, 1) on its corner. A hole seed there could carve either box (3D campaign seed 9 run
+    // 9527 carved one and kept the tet holding the seed); a region seed could name either.
+    let good = stacked_boxes();
+    let whole = idmesh::tetrahedralize(&good, &idmesh::Options3::default()).unwrap();
+    for at in [
+        [0.25, 0.5, 1.0],
+        [0.5, 0.5, 1.0],
+        [1.0, 0.5, 1.0],
+        [1.0, 1.0, 1.0],
+    ] {
+        let mut p = good.clone();
+        p.holes = vec![[0.5, 0.5, 1.5], at];
+        let (e, msg) = mesh_err(&p);
+        assert_eq!(
+            e,
+            InputError::HoleOutsideDomain { hole: 1 },
+            "hole at {at:?}: {msg}"
+        );
+        assert!(msg.contains("hole 1") && msg.contains("facet"), "{msg}");
+        let mut p = good.clone();
+        p.regions = vec![Region3 {
+            point: at,
+            attribute: 1.0,
+            max_volume: None,
+        }];
+        let (e, msg) = mesh_err(&p);
+        assert_eq!(
+            e,
+            InputError::RegionOutsideDomain { region: 0 },
+            "region at {at:?}: {msg}"
+        );
+    }
+    // A hole seed an ulp off the square is on one side: that box goes, the other stays.
+    for (z, kept_below) in [(up(1.0), true), (1.0 - f64::EPSILON / 2.0, false)] {
+        let mut p = good.clone();
+        p.holes = vec![[0.25, 0.5, z]];
+        let m = idmesh::tetrahedralize(&p, &idmesh::Options3::default()).unwrap();
+        assert!(!m.tets.is_empty() && m.tets.len() < whole.tets.len());
+        for t in &m.tets {
+            let zs = t.map(|v| m.vertices[v as usize][2]);
+            let below = zs.iter().all(|&z| z <= 1.0);
+            assert_eq!(below, kept_below, "hole at z = {z}: tet {t:?} at {zs:?}");
+        }
+    }
 }

@@ -41,12 +41,12 @@ pub enum idm_input_error {
     IDM_INPUT_CROSSING_SEGMENTS = 11,
     /// `item`: a hole seed with a NaN or infinite coordinate.
     IDM_INPUT_NON_FINITE_HOLE = 12,
-    /// `item`: a hole seed outside the domain (or on a segment).
+    /// `item`: a hole seed outside the domain (or on a segment, or in 3D on a facet).
     IDM_INPUT_HOLE_OUTSIDE_DOMAIN = 13,
     /// `item`: a region with a NaN or infinite coordinate or attribute, or a bound that is not
     /// positive.
     IDM_INPUT_INVALID_REGION = 14,
-    /// `item`: a region seed outside the domain (or on a segment).
+    /// `item`: a region seed outside the domain (or on a segment, or in 3D on a facet).
     IDM_INPUT_REGION_OUTSIDE_DOMAIN = 15,
     /// `item`: a facet with no polygon.
     IDM_INPUT_FACET_WITHOUT_POLYGONS = 16,

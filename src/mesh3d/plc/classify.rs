@@ -173,12 +173,65 @@ impl Mesher<'_> {
         Error::Internal("the facets enclose no volume, yet every facet edge is shared".into())
     }
 
+    /// The tet a hole or region seed `p` names, or `None` when `p` lies outside the hull or
+    /// on a facet (a subface, closed). A seed on a facet names no side of it: the flood would
+    /// start from whichever of the facet's two tets the walk ended in, and a hole seed on the
+    /// partition between two boxes carved one box or the other, with the seed left inside a
+    /// kept tet (3D campaign seed 9 run 9527); 2D refuses a seed on a segment the same way.
+    /// The seed is on a facet exactly when the closed tet holding it has a subface holding it:
+    /// on a face of that tet, on an edge around which some face is a subface, or on a vertex
+    /// lying on a facet. Every test is exact.
     pub(super) fn seed_tet(&self, p: [f64; 3]) -> Option<u32> {
         match self.tets.locate(p, self.hint) {
-            Located::InTet(t) if !self.tets.is_ghost(t) => Some(t),
+            Located::InTet(t) if !self.tets.is_ghost(t) => {
+                let vs = self.tets.verts(t);
+                let on: Vec<usize> = (0..4)
+                    .filter(|&f| {
+                        let [a, b, c] = face_of(vs, f).map(|v| self.pts[v as usize]);
+                        orient3d(a, b, c, p) == 0.0
+                    })
+                    .collect();
+                if on
+                    .iter()
+                    .any(|&f| self.feat.subface(face_of(vs, f)).is_some())
+                {
+                    return None;
+                }
+                if let [f1, f2] = on[..] {
+                    // On the edge the two faces share: the vertices opposite neither.
+                    let [a, b] = {
+                        let mut e = (0..4).filter(|&k| k != f1 && k != f2).map(|k| vs[k]);
+                        [e.next()?, e.next()?]
+                    };
+                    let mut ring = Vec::new();
+                    self.tets.edge_ring(t, a, b, &mut ring);
+                    let on_facet = ring.iter().any(|&u| {
+                        let us = self.tets.verts(u);
+                        (0..4).any(|f| {
+                            let face = face_of(us, f);
+                            face.contains(&a)
+                                && face.contains(&b)
+                                && self.feat.subface(face).is_some()
+                        })
+                    });
+                    if on_facet {
+                        return None;
+                    }
+                }
+                Some(t)
+            }
             Located::InTet(_) => None,
-            // A Steiner point landed exactly on the seed: any real tet around it will do.
             Located::Vertex(v) => {
+                if self
+                    .feat
+                    .vert_facets
+                    .get(&v)
+                    .is_some_and(|fs| !fs.is_empty())
+                {
+                    return None;
+                }
+                // A Steiner point landed exactly on the seed, off every facet: any real tet
+                // around it will do.
                 let mut star = Vec::new();
                 self.tets.star(v, &mut star);
                 star.into_iter().find(|&t| !self.tets.is_ghost(t))

@@ -19,6 +19,10 @@
 //! Triangle's or TetGen's formats (`r<run>.poly` input, `.node`, `.ele`, and `.face` in 3D,
 //! plus `.args`: the checker's options), so that an independent checker can read it:
 //! `fuzz/verify_campaign.sh DIR` runs `verify2d.py`/`verify3d.py` over them.
+//!
+//! With `IDMESH_CAMPAIGN_INPUTS=DIR`, the input of every case run is written to `DIR` before it
+//! is meshed (`r<run>.poly`), whatever its outcome, so that a failing case (an internal error
+//! or a hang, which write no mesh) can be rerun with the command line.
 
 #[path = "../fuzz/fuzz_targets/mutate.rs"]
 mod mutate;
@@ -86,6 +90,17 @@ fn outcome<M>(
     }
 }
 
+/// Writes a case's input as `r<run>.poly` into the directory of `IDMESH_CAMPAIGN_INPUTS`.
+fn write_input(
+    dir: &Option<PathBuf>,
+    run: u64,
+    poly: &dyn Fn(&mut dyn Write) -> std::io::Result<()>,
+) {
+    if let Some(d) = dir {
+        write_files(&d.join(format!("r{run}")), &[("poly", poly)]);
+    }
+}
+
 /// One writer of a dumped case: the file's extension and what goes into it.
 type Writer<'a> = (&'a str, &'a dyn Fn(&mut dyn Write) -> std::io::Result<()>);
 
@@ -128,6 +143,10 @@ fn main() {
     if let Some(d) = &dump {
         std::fs::create_dir_all(d).expect("IDMESH_CAMPAIGN_DUMP: cannot create the directory");
     }
+    let inputs = std::env::var_os("IDMESH_CAMPAIGN_INPUTS").map(PathBuf::from);
+    if let Some(d) = &inputs {
+        std::fs::create_dir_all(d).expect("IDMESH_CAMPAIGN_INPUTS: cannot create the directory");
+    }
     let mut rng = Rng(seed);
     let mut counts: BTreeMap<String, u64> = BTreeMap::new();
     let mut bytes = vec![0u8; 256];
@@ -147,6 +166,9 @@ fn main() {
             };
             case.muts.truncate(6);
             desc = format!("{case:?}");
+            write_input(&inputs, run, &|w| {
+                idmesh::io::triangle::write_pslg_poly(w, &case.input(), 1)
+            });
             let dump = dump.clone();
             std::thread::spawn(move || {
                 let check = |m: &idmesh::TriMesh| {
@@ -187,6 +209,9 @@ fn main() {
             };
             case.muts.truncate(6);
             desc = format!("{case:?}");
+            write_input(&inputs, run, &|w| {
+                idmesh::io::tetgen::write_plc_poly(w, &case.input(), 1)
+            });
             let dump = dump.clone();
             std::thread::spawn(move || {
                 let check = |m: &idmesh::TetMesh| m.validate().map_err(|e| e.to_string());

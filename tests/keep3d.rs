@@ -276,6 +276,49 @@ fn a_free_segment_through_the_volume_is_refused_by_name() {
     }
 }
 
+#[test]
+fn a_point_on_a_fin_edge_is_taken_off_by_two_points() {
+    // A cube with a triangle inside it (a fin: the domain on both sides, its edges on no other
+    // facet), and points crowding the middle of its edges from above and below, so that the
+    // conforming mesh splits them.
+    let mut plc = common3d::box_plc([0.0; 3], [1.0; 3]);
+    let a = plc.points.len() as u32;
+    plc.points
+        .extend([[0.3, 0.3, 0.5], [0.7, 0.3, 0.5], [0.5, 0.7, 0.5]]);
+    plc.facets.push(tri(a, a + 1, a + 2));
+    for (x, y) in [(0.5, 0.3), (0.6, 0.5), (0.4, 0.5)] {
+        plc.points.push([x + 0.01, y - 0.005, 0.51]);
+        plc.points.push([x - 0.01, y + 0.005, 0.49]);
+    }
+    let inputs = plc.points.len();
+    let conforming = idmesh::tetrahedralize(&plc, &Options3::default()).unwrap();
+    assert!(
+        conforming.vertices[inputs..]
+            .iter()
+            .any(|v| v[2] == 0.5 && v[1] == 0.3 && v[0] > 0.3 && v[0] < 0.7),
+        "the conforming mesh does not split the fin's edge"
+    );
+    for opts in [
+        keep(),
+        Options3 {
+            radius_edge: Some(1.414),
+            ..keep()
+        },
+    ] {
+        let mesh = idmesh::tetrahedralize(&plc, &opts).unwrap();
+        mesh.validate().unwrap();
+        // The 12 triangles of the cube and the fin, on input vertices only.
+        assert_eq!(mesh.faces.len(), 13);
+        assert!(mesh.faces.iter().flatten().all(|&v| (v as usize) < inputs));
+        let volume: f64 = mesh
+            .tets
+            .iter()
+            .map(|t| common3d::tet_volume(t.map(|v| mesh.vertices[v as usize])).abs())
+            .sum();
+        assert!((volume - 1.0).abs() < 1e-12, "volume {volume}");
+    }
+}
+
 proptest! {
     #![proptest_config(config(48))]
 

@@ -232,6 +232,14 @@ impl Tets {
         id as VertexId
     }
 
+    /// Takes back the last vertex pushed, which no tet uses (a point made for a replacement
+    /// that [`Tets::replace`] refused, which changes nothing).
+    pub fn pop_vertex(&mut self) {
+        debug_assert!(self.vtet.last().is_some_and(|&t| t == NONE));
+        self.pts.pop();
+        self.vtet.pop();
+    }
+
     /// Moves vertex `v` to `p`. The caller keeps the tetrahedralization valid (every real tet
     /// positively oriented), as `plc/frame.rs` checks after moving Steiner points onto the
     /// caller's grid.

@@ -14,12 +14,16 @@
 //!   triangles) joined to a point strictly inside the group's kernel is a positive tet, and
 //!   the kernel has interior right next to `s`, so such a point exists; it is picked with
 //!   exact orientation tests ([`crate::mesh3d::store::Tets::replace`] checks the result again).
+//! * a point on the free edge of a fin (a facet with the domain on both sides, its edge on no
+//!   other facet) has one group, which reaches the fin from both sides: no one point is on
+//!   both sides, so two points re-cone it, one on each side just past the edge, with tets on
+//!   the edge between them filling the seam ([`Mesher::suppress_on_fin`]).
 //! * In floating point the kernel can still be empty: where nearly coplanar facets meet (a
 //!   fan of triangles at 179.99°), the point moved off for one split point of their edge sits
 //!   in a wedge a few rounding errors thick and flattens the next split point's tets. Such a
 //!   point is left as it is and tried again after the others, once the moved points have
-//!   been taken out where possible and flips have reshaped its star ([`RETRY_ROUNDS`]
-//!   rounds; then the error).
+//!   been taken out where possible, flips have reshaped its star and the moved points left
+//!   have been recentred in their stars ([`RETRY_ROUNDS`] rounds; then the error).
 //!
 //! The moved points are then removed where their star can be re-coned from one of its own
 //! vertices, so that points stay only where the surface needs them (a Schönhardt-like
@@ -43,6 +47,11 @@ use crate::predicates::{in_diametral_ball_seg3, in_lens_tri, orient2d, orient3d}
 /// points in at a distance that still makes good tets with the subface (radius-edge about 1.1
 /// at half the circumradius above its centre) and keeps them from creeping onto it.
 const LENS_HEIGHT: f64 = 0.5;
+
+/// Placeholder ids of the two points that take a fin's split point's place while their
+/// positions are searched ([`Mesher::suppress_on_fin`]).
+const QU: u32 = u32::MAX - 1;
+const QD: u32 = u32::MAX - 2;
 
 /// Rounds of retrying the boundary Steiner points that could not be taken off the surface at
 /// first (see [`Mesher::keep_input_surface`]).
@@ -102,6 +111,7 @@ impl Mesher<'_> {
             // tried again.
             self.remove_moved_points(&moved);
             self.delaunay_flips();
+            self.recentre_moved_points(&moved);
             retried += stuck.len();
             pending = stuck;
         }
@@ -202,9 +212,13 @@ impl Mesher<'_> {
             seen.sort_unstable();
             if let Some(w) = seen.windows(2).find(|w| w[0] == w[1]) {
                 // The group reaches a subface from both sides: s is on a free edge of a facet
-                // inside the domain (a fin), and a point moved off it would have to be on both
-                // sides of the facet at once.
+                // inside the domain (a fin), and no one point moved off it is on both sides
+                // of the facet: two are.
                 let fid = self.feat.subface(w[0]).unwrap_or(NONE);
+                let only_fin = groups.len() == 1 && floor_faces.iter().all(|f| f.2 == fid);
+                if only_fin && self.suppress_on_fin(s, &star, &floor_faces, fid, moved)? {
+                    return Ok(Ok(()));
+                }
                 return Err(Error::Unsupported(format!(
                     "-Y (keep the surface): the Steiner point {at:?} on a free edge of facet \
                      {fid} (an edge of no other facet, with the domain all around it) cannot \
@@ -281,8 +295,14 @@ impl Mesher<'_> {
             self.set_region(t, r);
         }
         moved.extend(apexes);
-        // The features forget s.
-        for p in &patches {
+        self.forget_suppressed(s, &patches);
+        Ok(Ok(()))
+    }
+
+    /// The features after `s` is suppressed: its facets' subfaces around it are the patches'
+    /// new triangles, and the input edge through it is one subsegment again.
+    fn forget_suppressed(&mut self, s: u32, patches: &[FacetPatch]) {
+        for p in patches {
             for f in &p.old {
                 self.feat.subfaces.remove(f);
             }
@@ -306,7 +326,234 @@ impl Mesher<'_> {
             }
         }
         self.feat.forget_vertex(s);
-        Ok(Ok(()))
+    }
+
+    /// Suppresses `s` on the free edge of fin `fid` (a facet inside the domain, with the domain
+    /// all around that edge), its star `star` one group whose floor faces `floor` are the fin's
+    /// subfaces around `s`, seen from both sides. The star's tets fall into the two sides of
+    /// the fin's plane (a tet on the fin on the side of its fourth vertex, any other on the
+    /// side of its link face's centroid); each side is re-coned from its own point, `q+` and
+    /// `q-`, moved off `s` past the free edge and to that side, and the seam between the two
+    /// cones is filled with tets on the edge `q+ q-`: one per face through `s` between tets of
+    /// the two sides, and one on the fin's new boundary edge. The points are searched along a
+    /// few directions at halving distances; every new tet is checked exactly, and
+    /// [`crate::mesh3d::store::Tets::replace`] checks the whole again. `Ok(false)`, with
+    /// nothing changed, when no candidate gives positive tets.
+    fn suppress_on_fin(
+        &mut self,
+        s: u32,
+        star: &[u32],
+        floor: &[(usize, [u32; 3], u32)],
+        fid: u32,
+        moved: &mut Vec<u32>,
+    ) -> Result<bool, Error> {
+        let Some(&[a, b]) = self.feat.seg_adj.get(&s).map(|v| v.as_slice()) else {
+            return Ok(false);
+        };
+        let mut old: Vec<[u32; 3]> = floor.iter().map(|f| fkey(f.1)).collect();
+        old.sort_unstable();
+        old.dedup();
+        let Ok(new) = self.retriangulate(s, fid, &old) else {
+            return Ok(false);
+        };
+        let p = |v: u32| self.pts[v as usize];
+        let plane = self.feat.facets[fid as usize].plane.map(p);
+        let above = |x: [f64; 3]| orient3d(plane[0], plane[1], plane[2], x) > 0.0;
+        // The side of each star tet: true for the side `orient3d(plane, x) > 0`.
+        let tets: Vec<[u32; 4]> = star.iter().map(|&t| self.tets.verts(t)).collect();
+        let mut side: Vec<bool> = tets
+            .iter()
+            .map(|t| {
+                let l: Vec<[f64; 3]> = t.iter().filter(|&&v| v != s).map(|&v| p(v)).collect();
+                above([0, 1, 2].map(|k| (l[0][k] + l[1][k] + l[2][k]) / 3.0))
+            })
+            .collect();
+        for &(i, face, _) in floor {
+            let x = tets[i]
+                .iter()
+                .copied()
+                .find(|v| !face.contains(v))
+                .unwrap_or(s);
+            side[i] = above(p(x));
+        }
+        // The floor faces of each side must all turn one way in the fin's projection.
+        let axis = self.feat.facets[fid as usize].axis;
+        let p2 = |v: u32| proj(p(v), axis);
+        let ccw = |f: [u32; 3]| orient2d(p2(f[0]), p2(f[1]), p2(f[2])) > 0.0;
+        let mut turn = [None::<bool>; 2];
+        for &(i, face, _) in floor {
+            let k = side[i] as usize;
+            if *turn[k].get_or_insert(ccw(face)) != ccw(face) {
+                return Ok(false);
+            }
+        }
+        let (Some(up_ccw), Some(down_ccw)) = (turn[1], turn[0]) else {
+            return Ok(false);
+        };
+        if up_ccw == down_ccw {
+            return Ok(false);
+        }
+        // Directions: n to the upper side, o in the fin's plane, away from the fin.
+        let v3 = |x: [f64; 3]| glam::DVec3::from(x);
+        let ps = v3(p(s));
+        let ell = v3(p(b)) - v3(p(a));
+        let mut n = (v3(plane[1]) - v3(plane[0])).cross(v3(plane[2]) - v3(plane[0]));
+        let mut o = n.cross(ell);
+        if n.length() == 0.0 || o.length() == 0.0 {
+            return Ok(false);
+        }
+        n = n.normalize();
+        o = o.normalize();
+        let reach = tets
+            .iter()
+            .flatten()
+            .filter(|&&v| v != s)
+            .map(|&v| (v3(p(v)) - ps).length())
+            .fold(f64::INFINITY, f64::min);
+        if !above((ps + n * reach).to_array()) {
+            n = -n;
+        }
+        let inner = new
+            .iter()
+            .flatten()
+            .copied()
+            .find(|&v| v != a && v != b)
+            .map_or(ps, |v| v3(p(v)));
+        if (inner - ps).dot(o) > 0.0 {
+            o = -o;
+        }
+        let mut forced = vec![false; tets.len()];
+        for &(i, _, _) in floor {
+            forced[i] = true;
+        }
+        // A vertex within rounding of the fin's plane can put a tet on the wrong side of the
+        // seam, which then folds back over the fin (no candidate works, whatever its
+        // distance): the upper tet of each seam tet that stays inverted goes to the lower side
+        // (or the lower one up), and the points are searched again.
+        let mut best = None;
+        let mut cand = Vec::new();
+        for _repair in 0..8 {
+            let seams = fin_cones(
+                s,
+                star,
+                &tets,
+                &side,
+                &new,
+                up_ccw,
+                [a, b],
+                |t, f| {
+                    let (n, _) = self.tets.neighbor(t, f);
+                    n
+                },
+                |f| self.feat.subface(f).is_some(),
+                &mut cand,
+            );
+            let Some(seams) = seams else {
+                return Ok(false);
+            };
+            let fixed = cand.len() - seams.len();
+            let mut fewest: Option<Vec<usize>> = None;
+            for alpha in [1.0, 0.5, 2.0, 0.25, 4.0] {
+                let mut delta = 0.5 * reach;
+                for _ in 0..60 {
+                    let qu = (ps + (o * alpha + n) * delta).to_array();
+                    let qd = (ps + (o * alpha - n) * delta).to_array();
+                    let at = |v: u32| match v {
+                        QU => qu,
+                        QD => qd,
+                        v => p(v),
+                    };
+                    let mut worst = f64::INFINITY;
+                    let mut bad = Vec::new();
+                    for (k, t) in cand.iter().enumerate() {
+                        let c = t.map(at);
+                        if orient3d(c[0], c[1], c[2], c[3]) >= 0.0 {
+                            worst = 0.0;
+                            bad.push(k);
+                        } else {
+                            worst = worst.min(crate::geometry::tet_shape(c));
+                        }
+                    }
+                    if worst > 0.0 {
+                        if best.map_or(true, |b: ([f64; 3], [f64; 3], f64)| worst > b.2) {
+                            best = Some((qu, qd, worst));
+                        }
+                        break;
+                    }
+                    if fewest.as_ref().map_or(true, |f| bad.len() < f.len()) {
+                        fewest = Some(bad);
+                    }
+                    delta *= 0.5;
+                }
+            }
+            if best.is_some() {
+                break;
+            }
+            // Only seam tets inverted: move their tets across.
+            let Some(bad) = fewest.filter(|b| b.iter().all(|&k| k >= fixed)) else {
+                return Ok(false);
+            };
+            let mut changed = false;
+            for k in bad {
+                let Some((i, j)) = seams[k - fixed] else {
+                    continue;
+                };
+                if !forced[i] {
+                    side[i] = false;
+                    changed = true;
+                } else if !forced[j] {
+                    side[j] = true;
+                    changed = true;
+                }
+            }
+            if !changed {
+                return Ok(false);
+            }
+        }
+        let Some((qu, qd, _)) = best else {
+            return Ok(false);
+        };
+        let vu = self.new_vertex(qu)?;
+        let vd = self.new_vertex(qd)?;
+        while self.tets.num_vertices() < self.pts.len() {
+            let x = self.pts[self.tets.num_vertices()];
+            self.tets.push_vertex(x);
+        }
+        let new_tets: Vec<[u32; 4]> = cand
+            .iter()
+            .map(|t| {
+                t.map(|v| match v {
+                    QU => vu,
+                    QD => vd,
+                    v => v,
+                })
+            })
+            .collect();
+        let reg = self.region_of(star[0]);
+        let ids = match self.tets.replace(star, &new_tets, &[]) {
+            Ok(ids) => ids,
+            Err(_) => {
+                // Nothing changed: the two points go again.
+                for _ in 0..2 {
+                    self.tets.pop_vertex();
+                    self.pts.pop();
+                }
+                return Ok(false);
+            }
+        };
+        for t in ids {
+            self.set_region(t, reg);
+        }
+        moved.extend([vu, vd]);
+        self.forget_suppressed(
+            s,
+            &[FacetPatch {
+                facet: fid,
+                old,
+                new,
+            }],
+        );
+        Ok(true)
     }
 
     /// The new triangles of facet `fid` around `s` (its subfaces `old` there), without `s`:
@@ -433,6 +680,16 @@ impl Mesher<'_> {
     /// convex and `s` is on its border), and the centroid of the group's other vertices; the
     /// valid one whose worst tet is best wins.
     fn best_apex(&self, s: u32, link: &[[u32; 4]], floor: &[[u32; 3]]) -> Option<[f64; 3]> {
+        self.best_apex_scored(s, link, floor).map(|b| b.0)
+    }
+
+    /// [`Mesher::best_apex`] with the shape of the worst of its tets.
+    fn best_apex_scored(
+        &self,
+        s: u32,
+        link: &[[u32; 4]],
+        floor: &[[u32; 3]],
+    ) -> Option<([f64; 3], f64)> {
         let p = |v: u32| self.pts[v as usize];
         let ps = p(s);
         // Each new tet's face opposite the apex, in FACE order: the apex must be below it.
@@ -506,7 +763,7 @@ impl Mesher<'_> {
             // take its planes for zeros. Then the deepest point in units of the star.
             deepest(true, &mut consider);
         }
-        best.map(|b| b.0)
+        best
     }
 
     /// Removes the points made by [`Mesher::suppress`] where the star of one can be re-coned
@@ -522,6 +779,35 @@ impl Mesher<'_> {
             });
             if left.len() == before {
                 break;
+            }
+        }
+    }
+
+    /// Moves each point made by [`Mesher::suppress`] that is still in the mesh to the best point
+    /// of its star's kernel ([`Mesher::best_apex`], no floor: it lies on no facet) when that
+    /// makes the star's worst tet better. A point moved off the surface where its wedge was a
+    /// few rounding errors thick (next to a tiny input facet, say) stays within rounding of
+    /// the facets even once flips have opened its star, and then leaves a neighbouring split
+    /// point's wedge no room; its star's kernel has room by then.
+    fn recentre_moved_points(&mut self, moved: &[u32]) {
+        let mut star = Vec::new();
+        for &r in moved {
+            if self.tets.vertex_tet(r) == NONE {
+                continue;
+            }
+            self.tets.star(r, &mut star);
+            let link: Vec<[u32; 4]> = star.iter().map(|&t| self.tets.verts(t)).collect();
+            let p = |v: u32| self.pts[v as usize];
+            let now = link
+                .iter()
+                .map(|t| crate::geometry::tet_shape(t.map(p)))
+                .fold(f64::INFINITY, f64::min);
+            let Some((q, worst)) = self.best_apex_scored(r, &link, &[]) else {
+                continue;
+            };
+            if worst > now {
+                self.pts[r as usize] = q;
+                self.tets.set_point(r, q);
             }
         }
     }
@@ -695,4 +981,80 @@ impl Mesher<'_> {
         }
         false
     }
+}
+
+/// The tets that replace the star of `s` on the free edge `ab` of a fin
+/// ([`Mesher::suppress_on_fin`]), into `out`, with [`QU`] and [`QD`] for the two new points:
+/// each star tet (vertices `tets`, ids `star`) with `s` replaced by the point of its side
+/// (`up`: true for [`QU`]), the fin's new triangles `new` coned from both points
+/// (counter-clockwise in the fin's projection seen from the upper side when `up_ccw`), and
+/// the seam: for each face through `s` between an upper and a lower tet (`neighbor(tet,
+/// face)`, not a subface by `is_subface`), the tet on `QU QD` and its other two vertices,
+/// closed by one on `QU QD a b`. Returns, for each seam tet in order (they come last in
+/// `out`), its upper and lower star tets (none for the last); `None` when the fin's new
+/// triangles do not have the edge `ab`.
+#[allow(clippy::too_many_arguments)]
+fn fin_cones(
+    s: u32,
+    star: &[u32],
+    tets: &[[u32; 4]],
+    up: &[bool],
+    new: &[[u32; 3]],
+    up_ccw: bool,
+    [a, b]: [u32; 2],
+    neighbor: impl Fn(u32, usize) -> u32,
+    is_subface: impl Fn([u32; 3]) -> bool,
+    out: &mut Vec<[u32; 4]>,
+) -> Option<Vec<Option<(usize, usize)>>> {
+    out.clear();
+    for (t, &u) in tets.iter().zip(up) {
+        let q = if u { QU } else { QD };
+        out.push(t.map(|v| if v == s { q } else { v }));
+    }
+    for &[x, y, z] in new {
+        out.push(if up_ccw { [QU, x, y, z] } else { [QU, x, z, y] });
+        out.push(if up_ccw { [QD, x, z, y] } else { [QD, x, y, z] });
+    }
+    let mut seams = Vec::new();
+    // A face through s seen from the upper tet, closed by the lower point in place of the
+    // upper tet's fourth vertex: the tuple turns negative, and a swap makes it positive.
+    for (i, (t, &u)) in tets.iter().zip(up).enumerate() {
+        if !u {
+            continue;
+        }
+        for f in 0..4 {
+            if t[f] == s {
+                continue;
+            }
+            let n = neighbor(star[i], f);
+            let Some(j) = star.iter().position(|&x| x == n) else {
+                continue;
+            };
+            if up[j] || is_subface(FACE[f].map(|k| t[k])) {
+                continue;
+            }
+            let mut seam = t.map(|v| if v == s { QU } else { v });
+            seam[f] = QD;
+            let mut uw = (0..4).filter(|&k| k != f && t[k] != s);
+            let (Some(x), Some(y)) = (uw.next(), uw.next()) else {
+                return None;
+            };
+            seam.swap(x, y);
+            out.push(seam);
+            seams.push(Some((i, j)));
+        }
+    }
+    let &edge_tri = new.iter().find(|t| t.contains(&a) && t.contains(&b))?;
+    let [x, y, z] = edge_tri;
+    let mut seam = if up_ccw { [QU, x, y, z] } else { [QU, x, z, y] };
+    let c = (1..4).find(|&k| seam[k] != a && seam[k] != b)?;
+    seam[c] = QD;
+    let mut uw = (1..4).filter(|&k| k != c);
+    let (Some(x), Some(y)) = (uw.next(), uw.next()) else {
+        return None;
+    };
+    seam.swap(x, y);
+    out.push(seam);
+    seams.push(None);
+    Some(seams)
 }

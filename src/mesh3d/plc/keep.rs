@@ -331,12 +331,13 @@ impl Mesher<'_> {
     /// Suppresses `s` on the free edge of fin `fid` (a facet inside the domain, with the domain
     /// all around that edge), its star `star` one group whose floor faces `floor` are the fin's
     /// subfaces around `s`, seen from both sides. The star's tets fall into the two sides of
-    /// the fin's plane (a tet on the fin on the side of its fourth vertex, any other on the
-    /// side of its link face's centroid); each side is re-coned from its own point, `q+` and
-    /// `q-`, moved off `s` past the free edge and to that side, and the seam between the two
-    /// cones is filled with tets on the edge `q+ q-`: one per face through `s` between tets of
-    /// the two sides, and one on the fin's new boundary edge. The points are searched along a
-    /// few directions at halving distances; every new tet is checked exactly, and
+    /// the fin's plane (a tet on the fin on the side its face on the fin turns to; any other
+    /// on the side of a seam path of growing angle around `s`, [`monotone_seam`], or else of
+    /// its link face's centroid); each side is re-coned from its own point, `q+` and `q-`,
+    /// moved off `s` past the free edge and to that side, and the seam between the two cones
+    /// is filled with tets on the edge `q+ q-`: one per face through `s` between tets of the
+    /// two sides, and one on the fin's new boundary edge. The points are searched along a few
+    /// directions and tilts at halving distances; every new tet is checked exactly, and
     /// [`crate::mesh3d::store::Tets::replace`] checks the whole again. `Ok(false)`, with
     /// nothing changed, when no candidate gives positive tets.
     fn suppress_on_fin(
@@ -368,29 +369,27 @@ impl Mesher<'_> {
                 above([0, 1, 2].map(|k| (l[0][k] + l[1][k] + l[2][k]) / 3.0))
             })
             .collect();
-        for &(i, face, _) in floor {
-            let x = tets[i]
-                .iter()
-                .copied()
-                .find(|v| !face.contains(v))
-                .unwrap_or(s);
-            side[i] = above(p(x));
-        }
-        // The floor faces of each side must all turn one way in the fin's projection.
+        // A tet on the fin lies on the side its floor face turns to: a face of a tet turns like
+        // the plane's points, in the fin's projection, exactly when the tet's fourth vertex
+        // lies on the side where `orient3d(plane, x) > 0` (each face of a positive tet is
+        // turned so). The winding decides, not the fourth vertex: `s` is on the fin's plane
+        // only to rounding, and a vertex within rounding of the plane can lie on the other
+        // side of it than its tet.
         let axis = self.feat.facets[fid as usize].axis;
-        let p2 = |v: u32| proj(p(v), axis);
-        let ccw = |f: [u32; 3]| orient2d(p2(f[0]), p2(f[1]), p2(f[2])) > 0.0;
-        let mut turn = [None::<bool>; 2];
-        for &(i, face, _) in floor {
-            let k = side[i] as usize;
-            if *turn[k].get_or_insert(ccw(face)) != ccw(face) {
-                return Ok(false);
-            }
-        }
-        let (Some(up_ccw), Some(down_ccw)) = (turn[1], turn[0]) else {
+        let ccw = |f: [[f64; 3]; 3]| {
+            let o = orient2d(proj(f[0], axis), proj(f[1], axis), proj(f[2], axis));
+            (o != 0.0).then_some(o > 0.0)
+        };
+        let Some(up_ccw) = ccw(plane) else {
             return Ok(false);
         };
-        if up_ccw == down_ccw {
+        for &(i, face, _) in floor {
+            let Some(turn) = ccw(face.map(p)) else {
+                return Ok(false);
+            };
+            side[i] = turn == up_ccw;
+        }
+        if !side.iter().any(|&u| u) || side.iter().all(|&u| u) {
             return Ok(false);
         }
         // Directions: n to the upper side, o in the fin's plane, away from the fin.
@@ -426,88 +425,127 @@ impl Mesher<'_> {
         for &(i, _, _) in floor {
             forced[i] = true;
         }
-        // A vertex within rounding of the fin's plane can put a tet on the wrong side of the
-        // seam, which then folds back over the fin (no candidate works, whatever its
+        // The seam tets want the edge `q+ q-` to cross every seam face the same way. For each
+        // direction of that edge (the fin's normal, tilted along the free edge or across it),
+        // the seam is first a path of link edges from `a` to `b` whose angle around `s`, seen
+        // along that direction, only grows ([`monotone_seam`]); failing that, the sides above.
+        // A vertex within rounding of the fin's plane can still put a tet on the wrong side
+        // of the seam, which then folds back over the fin (no candidate works, whatever its
         // distance): the upper tet of each seam tet that stays inverted goes to the lower side
         // (or the lower one up), and the points are searched again.
+        let along = ell.normalize();
+        let tilts = [
+            glam::DVec3::ZERO,
+            along * 0.5,
+            along * -0.5,
+            o * 0.5,
+            o * -0.5,
+        ];
+        let by_centroid = side;
         let mut best = None;
         let mut cand = Vec::new();
-        for _repair in 0..8 {
-            let seams = fin_cones(
+        'tilts: for tilt in tilts {
+            let d = n + tilt;
+            // An orthonormal frame across `d`: `e1` towards `a`, `e2` away from the fin.
+            let e1 = -along;
+            let e1 = (e1 - d * (e1.dot(d) / d.length_squared())).normalize();
+            let mut e2 = d.normalize().cross(e1);
+            if e2.dot(o) < 0.0 {
+                e2 = -e2;
+            }
+            let mut side = monotone_seam(
                 s,
                 star,
                 &tets,
-                &side,
-                &new,
-                up_ccw,
+                &by_centroid,
+                &forced,
                 [a, b],
-                |t, f| {
-                    let (n, _) = self.tets.neighbor(t, f);
-                    n
+                |v| {
+                    let x = v3(p(v)) - ps;
+                    let x = x - d * (x.dot(d) / d.length_squared());
+                    (x.dot(e2).atan2(x.dot(e1)), (v3(p(v)) - ps).dot(n).abs())
                 },
+                |t, f| self.tets.neighbor(t, f).0,
                 |f| self.feat.subface(f).is_some(),
-                &mut cand,
-            );
-            let Some(seams) = seams else {
-                return Ok(false);
-            };
-            let fixed = cand.len() - seams.len();
-            let mut fewest: Option<Vec<usize>> = None;
-            for alpha in [1.0, 0.5, 2.0, 0.25, 4.0] {
-                let mut delta = 0.5 * reach;
-                for _ in 0..60 {
-                    let qu = (ps + (o * alpha + n) * delta).to_array();
-                    let qd = (ps + (o * alpha - n) * delta).to_array();
-                    let at = |v: u32| match v {
-                        QU => qu,
-                        QD => qd,
-                        v => p(v),
-                    };
-                    let mut worst = f64::INFINITY;
-                    let mut bad = Vec::new();
-                    for (k, t) in cand.iter().enumerate() {
-                        let c = t.map(at);
-                        if orient3d(c[0], c[1], c[2], c[3]) >= 0.0 {
-                            worst = 0.0;
-                            bad.push(k);
-                        } else {
-                            worst = worst.min(crate::geometry::tet_shape(c));
-                        }
-                    }
-                    if worst > 0.0 {
-                        if best.map_or(true, |b: ([f64; 3], [f64; 3], f64)| worst > b.2) {
-                            best = Some((qu, qd, worst));
-                        }
-                        break;
-                    }
-                    if fewest.as_ref().map_or(true, |f| bad.len() < f.len()) {
-                        fewest = Some(bad);
-                    }
-                    delta *= 0.5;
-                }
-            }
-            if best.is_some() {
-                break;
-            }
-            // Only seam tets inverted: move their tets across.
-            let Some(bad) = fewest.filter(|b| b.iter().all(|&k| k >= fixed)) else {
-                return Ok(false);
-            };
-            let mut changed = false;
-            for k in bad {
-                let Some((i, j)) = seams[k - fixed] else {
-                    continue;
+            )
+            .unwrap_or_else(|| by_centroid.clone());
+            for _repair in 0..8 {
+                let seams = fin_cones(
+                    s,
+                    star,
+                    &tets,
+                    &side,
+                    &new,
+                    up_ccw,
+                    [a, b],
+                    |t, f| self.tets.neighbor(t, f).0,
+                    |f| self.feat.subface(f).is_some(),
+                    &mut cand,
+                );
+                let Some(seams) = seams else {
+                    return Ok(false);
                 };
-                if !forced[i] {
-                    side[i] = false;
-                    changed = true;
-                } else if !forced[j] {
-                    side[j] = true;
-                    changed = true;
+                let fixed = cand.len() - seams.len();
+                let mut fewest: Option<Vec<usize>> = None;
+                for alpha in [1.0, 0.5, 2.0, 0.25, 4.0] {
+                    let mut delta = 0.5 * reach;
+                    for _ in 0..60 {
+                        let qu = (ps + (o * alpha + n + tilt) * delta).to_array();
+                        let qd = (ps + (o * alpha - n - tilt) * delta).to_array();
+                        let at = |v: u32| match v {
+                            QU => qu,
+                            QD => qd,
+                            v => p(v),
+                        };
+                        let mut worst = f64::INFINITY;
+                        let mut bad = Vec::new();
+                        for (k, t) in cand.iter().enumerate() {
+                            let c = t.map(at);
+                            if orient3d(c[0], c[1], c[2], c[3]) >= 0.0 {
+                                worst = 0.0;
+                                bad.push(k);
+                            } else {
+                                worst = worst.min(crate::geometry::tet_shape(c));
+                            }
+                        }
+                        if worst > 0.0 {
+                            if best.map_or(true, |b: ([f64; 3], [f64; 3], f64)| worst > b.2) {
+                                best = Some((qu, qd, worst));
+                            }
+                            break;
+                        }
+                        // Only a candidate whose inverted tets are all seam tets says which
+                        // star tets to move across: an inverted cone tet means too far.
+                        let seam_only = bad.iter().all(|&k| k >= fixed);
+                        if seam_only && fewest.as_ref().map_or(true, |f| bad.len() < f.len()) {
+                            fewest = Some(bad);
+                        }
+                        delta *= 0.5;
+                    }
                 }
-            }
-            if !changed {
-                return Ok(false);
+                if best.is_some() {
+                    // `cand` is the seam the points were found for.
+                    break 'tilts;
+                }
+                let Some(bad) = fewest else {
+                    continue 'tilts;
+                };
+                let mut changed = false;
+                for k in bad {
+                    let Some((i, j)) = seams[k - fixed] else {
+                        continue;
+                    };
+                    if !forced[i] {
+                        side[i] = false;
+                        changed = true;
+                    } else if !forced[j] {
+                        side[j] = true;
+                        changed = true;
+                    }
+                }
+                if !changed {
+                    continue 'tilts;
+                }
             }
         }
         let Some((qu, qd, _)) = best else {
@@ -981,6 +1019,128 @@ impl Mesher<'_> {
         }
         false
     }
+}
+
+/// The sides of the star tets of `s` on the free edge `ab` of a fin
+/// ([`Mesher::suppress_on_fin`]) for a seam whose faces all turn one way seen along a
+/// direction: `angle(v)` is the angle of link vertex `v` around `s` seen along that direction,
+/// from `a` (0) through the side away from the fin to `b` (pi), and its distance to the fin's
+/// plane. The seam is a path of link edges (faces through `s` that are not subfaces,
+/// `neighbor(tet, face)` across them) from `a` to `b` over vertices strictly between 0 and pi
+/// whose angle grows at every step, the one nearest the fin's plane in sum: with `q+ q-` along
+/// that direction, each seam tet is positive for points close enough to `s`, and so is every
+/// cone tet, whatever the sides. The sides are then those reached from the tets on the fin
+/// (`forced`, with their sides in `init`) without crossing the fin or the seam. `None` when
+/// there is no such path or the two sides meet.
+#[allow(clippy::too_many_arguments)]
+fn monotone_seam(
+    s: u32,
+    star: &[u32],
+    tets: &[[u32; 4]],
+    init: &[bool],
+    forced: &[bool],
+    [a, b]: [u32; 2],
+    angle: impl Fn(u32) -> (f64, f64),
+    neighbor: impl Fn(u32, usize) -> u32,
+    is_subface: impl Fn([u32; 3]) -> bool,
+) -> Option<Vec<bool>> {
+    use std::f64::consts::PI;
+    // The faces through s inside the star, as link edges (x, y) between star tets i and j.
+    let mut links: Vec<(u32, u32, usize, usize)> = Vec::new();
+    for (i, t) in tets.iter().enumerate() {
+        for f in 0..4 {
+            if t[f] == s {
+                continue;
+            }
+            let face = FACE[f].map(|k| t[k]);
+            if is_subface(face) {
+                continue;
+            }
+            let j = star.iter().position(|&x| x == neighbor(star[i], f))?;
+            if j < i {
+                continue;
+            }
+            let mut xy = face.iter().copied().filter(|&v| v != s);
+            let (x, y) = (xy.next()?, xy.next()?);
+            links.push((x.min(y), x.max(y), i, j));
+        }
+    }
+    // Link vertices in front of the free edge, by angle: (angle, distance, vertex, cost, from).
+    let mut front: Vec<(f64, f64, u32, f64, u32)> = links
+        .iter()
+        .flat_map(|l| [l.0, l.1])
+        .filter_map(|v| {
+            let (th, h) = match v {
+                _ if v == a => (0.0, 0.0),
+                _ if v == b => (PI, 0.0),
+                _ => angle(v),
+            };
+            let inside = v == a || v == b || (th > 0.0 && th < PI);
+            inside.then_some((th, h, v, f64::INFINITY, NONE))
+        })
+        .collect();
+    front.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.2.cmp(&y.2)));
+    front.dedup_by_key(|x| x.2);
+    let at = |front: &[(f64, f64, u32, f64, u32)], v: u32| front.iter().position(|x| x.2 == v);
+    let start = at(&front, a)?;
+    front[start].3 = 0.0;
+    // Cheapest path in angle order (the edges only go forward, so one pass settles each).
+    for k in 0..front.len() {
+        let (th, _, v, cost, _) = front[k];
+        if cost == f64::INFINITY {
+            continue;
+        }
+        for l in &links {
+            let w = if l.0 == v {
+                l.1
+            } else if l.1 == v {
+                l.0
+            } else {
+                continue;
+            };
+            let Some(m) = at(&front, w) else {
+                continue;
+            };
+            if front[m].0 > th && cost + front[m].1 < front[m].3 {
+                front[m].3 = cost + front[m].1;
+                front[m].4 = v;
+            }
+        }
+    }
+    let mut seam: Vec<(u32, u32)> = Vec::new();
+    let mut v = b;
+    while v != a {
+        let from = front[at(&front, v)?].4;
+        if from == NONE || seam.len() > front.len() {
+            return None;
+        }
+        seam.push((v.min(from), v.max(from)));
+        v = from;
+    }
+    // The sides, flooded from the tets on the fin across faces that are not on the seam.
+    let mut side: Vec<Option<bool>> = vec![None; tets.len()];
+    let mut queue: Vec<usize> = Vec::new();
+    for i in (0..tets.len()).filter(|&i| forced[i]) {
+        side[i] = Some(init[i]);
+        queue.push(i);
+    }
+    while let Some(i) = queue.pop() {
+        for l in links.iter().filter(|l| l.2 == i || l.3 == i) {
+            if seam.contains(&(l.0, l.1)) {
+                continue;
+            }
+            let j = if l.2 == i { l.3 } else { l.2 };
+            match side[j] {
+                None => {
+                    side[j] = side[i];
+                    queue.push(j);
+                }
+                Some(u) if Some(u) != side[i] => return None,
+                Some(_) => {}
+            }
+        }
+    }
+    side.into_iter().collect()
 }
 
 /// The tets that replace the star of `s` on the free edge `ab` of a fin

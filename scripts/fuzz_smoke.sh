@@ -1,17 +1,18 @@
 #!/usr/bin/env bash
 # A short run of cargo-fuzz targets (fuzz/fuzz_targets), about SECONDS seconds each (default
-# 60): by default the readers and the C API call sequences. The structure-aware meshing targets
-# (mesh2d, mesh3d) still find open bugs within a minute (tests/fuzz_regressions.rs lists them,
-# ignored); name them to run them too: fuzz_smoke.sh 60 mesh2d mesh3d.
-# Any crash, hidden panic, mesh returned as a success that fails validate(), or input that
-# runs past the time limit fails the run and leaves the input under fuzz/artifacts/.
+# 60): by default all of them, the readers, the C API call sequences and the structure-aware
+# meshing targets (mesh2d, mesh3d), each from its committed corpus (fuzz/corpus/TARGET), which
+# libFuzzer replays in full first (the meshing corpora take about 2 and 3 minutes).
+# Any crash, panic, internal error from a meshing target, mesh returned as a success that
+# fails validate(), or input that runs past the time limit fails the run and leaves the input
+# under fuzz/artifacts/.
 # A fixed seed (-seed=1) keeps the CI run repeatable: a failure there fails again on rerun.
 # Installs cargo-fuzz (and uses the nightly toolchain) when missing.
 set -euo pipefail
 cd "$(dirname "$0")/../fuzz"
 SECONDS_PER_TARGET="${1:-60}"
 shift || true
-TARGETS="${*:-read_tetgen read_surface read_triangle c_api}"
+TARGETS="${*:-read_tetgen read_surface read_triangle c_api mesh2d mesh3d}"
 if ! cargo +nightly --version >/dev/null 2>&1; then
   echo "== fuzz smoke skipped: no nightly toolchain"; exit 0
 fi

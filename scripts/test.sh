@@ -52,8 +52,8 @@ for t in test_c_api test_mesher3d test_progress triangle_client_c triangle_clien
   fi
   echo "valgrind: $t clean"
 done
-echo "== fuzz smoke run (readers and C API targets, 30 s each)"
-bash scripts/fuzz_smoke.sh 30
+echo "== fuzz smoke run (readers, C API and meshing targets, 60 s each)"
+bash scripts/fuzz_smoke.sh 60
 echo "== the exact rechecks of the campaign's verifier failures pass right meshes, fail wrong ones"
 python3 fuzz/test_recheck.py
 if [ -d ../shared/data/2d ]; then

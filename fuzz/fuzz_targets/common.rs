@@ -1,16 +1,24 @@
 #![allow(dead_code)] // each target uses part of this module
 //! What every meshing fuzz target checks on a result: a mesh handed back as a success passes
-//! the exact `validate()`, and no panic hides behind an "internal error" (the library turns
-//! panics into `Error::Internal("… caught a panic …")` at its boundary; the fuzzer must see
-//! them). Other errors, internal ones included, are reported results: the campaign script
-//! counts them.
+//! the exact `validate()`, and no internal error comes back (a panic the library caught at
+//! its boundary, `Error::Internal("… caught a panic …")`, or the mesher giving up): issue 14
+//! asks for none, and the counted campaign (`examples/fuzz_campaign.rs`) has found none since
+//! the `-Y` fin and wedge fixes. Input errors, `Unsupported` refusals and a reached budget are
+//! reported results.
 
 use idmesh::Error;
 
-/// Fails the run on a hidden panic.
-pub fn no_hidden_panic(e: &Error) {
+/// The Steiner budget of a fuzzed case. Under the fuzzer's instrumentation (coverage and
+/// AddressSanitizer) the exact checks of `validate()` run some 400 times slower: a cube with
+/// a 1e-12 facet at `-q1.2` and the campaign's budget of 20,000 (14,188 Steiner points, 80,970
+/// tets, 0.26 s from the command line) took 104 s, past the 20 s hang limit. The fuzzer looks
+/// for wrong results on small inputs; the campaign, uninstrumented, runs the full budget.
+pub const FUZZ_BUDGET: u64 = 2_000;
+
+/// Fails the run on an internal error (a caught panic included).
+pub fn no_internal_error(e: &Error) {
     if let Error::Internal(m) = e {
-        assert!(!m.contains("caught a panic"), "{m}");
+        panic!("internal error: {m}");
     }
 }
 
@@ -22,7 +30,7 @@ pub fn check3(r: &Result<idmesh::TetMesh, Error>) {
                 panic!("a mesh returned as a success fails validate(): {e}");
             }
         }
-        Err(e) => no_hidden_panic(e),
+        Err(e) => no_internal_error(e),
     }
 }
 
@@ -39,6 +47,6 @@ pub fn check2(r: &Result<idmesh::TriMesh, Error>, constrained: bool) {
                 panic!("a mesh returned as a success fails validate(): {e}");
             }
         }
-        Err(e) => no_hidden_panic(e),
+        Err(e) => no_internal_error(e),
     }
 }

@@ -6,5 +6,8 @@ mod mutate;
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|case: mutate::Case2| {
-    common::check2(&case.run(), case.no_boundary_steiner);
+    common::check2(
+        &case.run_with_budget(common::FUZZ_BUDGET),
+        case.no_boundary_steiner,
+    );
 });

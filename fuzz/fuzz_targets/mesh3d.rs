@@ -6,5 +6,5 @@ mod mutate;
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|case: mutate::Case3| {
-    common::check3(&case.run());
+    common::check3(&case.run_with_budget(common::FUZZ_BUDGET));
 });

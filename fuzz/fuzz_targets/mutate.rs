@@ -308,13 +308,18 @@ impl Case2 {
         g
     }
 
-    /// Builds the input and meshes it with a Steiner budget.
+    /// Builds the input and meshes it with the campaign's Steiner budget, 20,000.
     pub fn run(&self) -> Result<idmesh::TriMesh, idmesh::Error> {
+        self.run_with_budget(20_000)
+    }
+
+    /// Builds the input and meshes it with at most `max_steiner` Steiner points.
+    pub fn run_with_budget(&self, max_steiner: u64) -> Result<idmesh::TriMesh, idmesh::Error> {
         let g = self.input();
         let opts = idmesh::Options {
             min_angle: self.angle.map(|a| 20.0 + (a % 15) as f64),
             no_boundary_steiner: self.no_boundary_steiner,
-            max_steiner: Some(20_000),
+            max_steiner: Some(max_steiner),
             ..Default::default()
         };
         idmesh::triangulate(&g, &opts)
@@ -342,13 +347,18 @@ impl Case3 {
         g
     }
 
-    /// Builds the input and meshes it with a Steiner budget.
+    /// Builds the input and meshes it with the campaign's Steiner budget, 20,000.
     pub fn run(&self) -> Result<idmesh::TetMesh, idmesh::Error> {
+        self.run_with_budget(20_000)
+    }
+
+    /// Builds the input and meshes it with at most `max_steiner` Steiner points.
+    pub fn run_with_budget(&self, max_steiner: u64) -> Result<idmesh::TetMesh, idmesh::Error> {
         let g = self.input();
         let opts = idmesh::Options3 {
             radius_edge: self.ratio.map(|r| 1.2 + (r % 9) as f64 / 10.0),
             keep_surface: self.keep_surface,
-            max_steiner: Some(20_000),
+            max_steiner: Some(max_steiner),
             ..Default::default()
         };
         idmesh::tetrahedralize(&g, &opts)

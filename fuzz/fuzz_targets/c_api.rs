@@ -8,6 +8,8 @@ use idmesh::ffi::mesh3d::*;
 use libfuzzer_sys::fuzz_target;
 use std::ptr::{null, null_mut};
 
+mod common;
+
 #[derive(Arbitrary, Debug)]
 enum Call {
     Points {
@@ -134,10 +136,12 @@ fuzz_target!(|calls: Vec<Call>| {
                 o.radius_edge = ratio;
                 o.max_volume = volume;
                 o.keep_surface = keep_surface as i32;
-                // At most 20,000 Steiner points: a tiny volume bound on the cube with the
-                // cap at 400k took 79 s under the fuzzer's instrumentation (not a hang, but
-                // past libFuzzer's 20 s timeout); the smoke run looks for crashes, not size.
-                o.max_steiner = ((steiner as i64).abs().max(1) * 16).min(20_000);
+                // The meshing targets' budget: a tiny volume bound on the cube with the cap
+                // at 400k took 79 s under the fuzzer's instrumentation (not a hang, but past
+                // libFuzzer's 20 s timeout), and at 20,000 replaying the corpus took 97 s;
+                // the smoke run looks for crashes, not size.
+                o.max_steiner =
+                    ((steiner as i64).abs().max(1) * 16).min(common::FUZZ_BUDGET as i64);
                 checked(unsafe { idm_mesher3d_set_options(m, &o) });
             }
             Call::Refine => {

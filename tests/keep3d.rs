@@ -333,43 +333,56 @@ fn assert_cube_with_fin(mesh: &TetMesh, inputs: usize, case: &str) {
 /// points past the edge (`suppress_on_fin`), with and without a quality bound. Before the
 /// seam between the two cones was chosen as a path of growing angle around the point (with a
 /// tilted direction where the fin's normal gives none), about one case in four was refused.
-#[test]
-fn random_fins_keep_their_surface() {
-    // splitmix64: the same cases on every run.
-    let mut state = 0x5eed_f1e5_u64;
-    let mut unit = move || {
+/// A splitmix64 stream of uniform numbers in [0, 1) from `seed`: the same cases on every run.
+fn splitmix(seed: u64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
         state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
         let mut z = state;
         z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
         z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
         ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    };
+    }
+}
+
+/// The unit cube with a random triangle fin inside and one to four points crowding the fin's
+/// edges from one side or the other at 1e-2 to 1e-8.
+fn random_fin(unit: &mut impl FnMut() -> f64) -> Plc {
+    let mut plc = common3d::box_plc([0.0; 3], [1.0; 3]);
+    let a = plc.points.len() as u32;
+    let fin: Vec<P3> = (0..3).map(|_| [0; 3].map(|_| 0.1 + 0.8 * unit())).collect();
+    plc.points.extend(fin.iter().copied());
+    plc.facets.push(tri(a, a + 1, a + 2));
+    let sub = |p: P3, q: P3| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+    let (u, v) = (sub(fin[1], fin[0]), sub(fin[2], fin[0]));
+    let n = [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ];
+    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    for _ in 0..1 + (unit() * 4.0) as usize {
+        let e = (unit() * 3.0) as usize % 3;
+        let (p, q, t) = (fin[e], fin[(e + 1) % 3], 0.2 + 0.6 * unit());
+        let d = [1e-2, 1e-3, 1e-5, 1e-8][(unit() * 4.0) as usize % 4]
+            * if unit() < 0.5 { -1.0 } else { 1.0 };
+        plc.points.push(
+            [0, 1, 2].map(|i| {
+                p[i] + t * (q[i] - p[i]) + d * n[i] / len + (2.0 * unit() - 1.0) * d.abs()
+            }),
+        );
+    }
+    plc
+}
+
+#[test]
+fn random_fins_keep_their_surface() {
+    let mut unit = splitmix(0x5eed_f1e5);
     let cases = 60;
     let (mut on_surface, mut kept) = (0, 0);
     let mut refused = Vec::new();
     for case in 0..cases {
-        let mut plc = common3d::box_plc([0.0; 3], [1.0; 3]);
-        let a = plc.points.len() as u32;
-        let fin: Vec<P3> = (0..3).map(|_| [0; 3].map(|_| 0.1 + 0.8 * unit())).collect();
-        plc.points.extend(fin.iter().copied());
-        plc.facets.push(tri(a, a + 1, a + 2));
-        let sub = |p: P3, q: P3| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
-        let (u, v) = (sub(fin[1], fin[0]), sub(fin[2], fin[0]));
-        let n = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
-        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-        for _ in 0..1 + (unit() * 4.0) as usize {
-            let e = (unit() * 3.0) as usize % 3;
-            let (p, q, t) = (fin[e], fin[(e + 1) % 3], 0.2 + 0.6 * unit());
-            let d = [1e-2, 1e-3, 1e-5, 1e-8][(unit() * 4.0) as usize % 4]
-                * if unit() < 0.5 { -1.0 } else { 1.0 };
-            plc.points.push([0, 1, 2].map(|i| {
-                p[i] + t * (q[i] - p[i]) + d * n[i] / len + (2.0 * unit() - 1.0) * d.abs()
-            }));
-        }
+        let plc = random_fin(&mut unit);
         let inputs = plc.points.len();
         let conforming = idmesh::tetrahedralize(&plc, &Options3::default()).unwrap();
         if conforming
@@ -406,6 +419,38 @@ fn random_fins_keep_their_surface() {
         refused.len() <= 2,
         "refused: cases {refused:?} ({kept} kept)"
     );
+}
+
+/// Fins whose conforming mesh holds a tet flat on the fin next to the Steiner point on its
+/// free edge: its four vertices on the fin's plane up to rounding, its face opposite the
+/// point one of the fin's new triangles, with a tet outside the star across it. `-Y` cones
+/// that triangle from the flat tet's side only, and makes no seam across the flat tet's
+/// faces; before, it coned the triangle from both sides (three tets on one face) and every
+/// candidate pair of points was refused. Cases of `random_fin` (seed, index), each refused
+/// before, with and without a quality bound.
+#[test]
+fn fins_with_a_flat_tet_on_the_fin_keep_their_surface() {
+    for (seed, index) in [(8, 197), (9, 110), (13, 125), (18, 24)] {
+        let mut unit = splitmix(seed);
+        let mut plc = random_fin(&mut unit);
+        for _ in 0..index {
+            plc = random_fin(&mut unit);
+        }
+        let inputs = plc.points.len();
+        for opts in [
+            keep(),
+            Options3 {
+                radius_edge: Some(1.414),
+                ..keep()
+            },
+        ] {
+            let case = format!("seed {seed} case {index}, {:?}", opts.radius_edge);
+            match idmesh::tetrahedralize(&plc, &opts) {
+                Ok(mesh) => assert_cube_with_fin(&mesh, inputs, &case),
+                Err(e) => panic!("{case}: {e}"),
+            }
+        }
+    }
 }
 
 proptest! {

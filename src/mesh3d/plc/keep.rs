@@ -425,6 +425,21 @@ impl Mesher<'_> {
         for &(i, _, _) in floor {
             forced[i] = true;
         }
+        // A tet flat on the fin (its four vertices on the fin's plane up to rounding) can have
+        // one of the fin's new triangles as its face opposite `s`, with a tet outside the
+        // star across it. That triangle then has one side taken already: its cone tet is the
+        // flat tet's own, on the side of the triangle where `s` lies, whatever the windings
+        // of the flat tet's faces on the fin say (those faces go with `s`).
+        let sent = |t: &[u32; 4], q: [f64; 3]| {
+            let c = t.map(|v| if v == s { q } else { p(v) });
+            orient3d(c[0], c[1], c[2], c[3])
+        };
+        for (i, t) in tets.iter().enumerate() {
+            if closes_new_triangle(s, t, &new) {
+                side[i] = sent(t, (ps + n * reach).to_array()) < 0.0;
+                forced[i] = true;
+            }
+        }
         // The seam tets want the edge `q+ q-` to cross every seam face the same way. For each
         // direction of that edge (the fin's normal, tilted along the free edge or across it),
         // the seam is first a path of link edges from `a` to `b` whose angle around `s`, seen
@@ -1143,10 +1158,24 @@ fn monotone_seam(
     side.into_iter().collect()
 }
 
+/// Whether tet `t` of the star of `s` has one of the triangles `new` as its face opposite
+/// `s` (a tet flat on a fin, between the old subfaces around `s` and a new one).
+fn closes_new_triangle(s: u32, t: &[u32; 4], new: &[[u32; 3]]) -> bool {
+    let mut link: Vec<u32> = t.iter().copied().filter(|&v| v != s).collect();
+    link.sort_unstable();
+    link.len() == 3
+        && new.iter().any(|f| {
+            let mut f = *f;
+            f.sort_unstable();
+            f[..] == link[..]
+        })
+}
+
 /// The tets that replace the star of `s` on the free edge `ab` of a fin
 /// ([`Mesher::suppress_on_fin`]), into `out`, with [`QU`] and [`QD`] for the two new points:
 /// each star tet (vertices `tets`, ids `star`) with `s` replaced by the point of its side
-/// (`up`: true for [`QU`]), the fin's new triangles `new` coned from both points
+/// (`up`: true for [`QU`]), the fin's new triangles `new` coned from both points (but for
+/// one a star tet closes, [`closes_new_triangle`], which that tet's replacement covers)
 /// (counter-clockwise in the fin's projection seen from the upper side when `up_ccw`), and
 /// the seam: for each face through `s` between an upper and a lower tet (`neighbor(tet,
 /// face)`, not a subface by `is_subface`), the tet on `QU QD` and its other two vertices,
@@ -1172,6 +1201,11 @@ fn fin_cones(
         out.push(t.map(|v| if v == s { q } else { v }));
     }
     for &[x, y, z] in new {
+        // A new triangle that a star tet closes has its cone tet from that tet, and a tet
+        // outside the star on its other side.
+        if tets.iter().any(|t| closes_new_triangle(s, t, &[[x, y, z]])) {
+            continue;
+        }
         out.push(if up_ccw { [QU, x, y, z] } else { [QU, x, z, y] });
         out.push(if up_ccw { [QD, x, z, y] } else { [QD, x, y, z] });
     }
@@ -1190,7 +1224,13 @@ fn fin_cones(
             let Some(j) = star.iter().position(|&x| x == n) else {
                 continue;
             };
-            if up[j] || is_subface(FACE[f].map(|k| t[k])) {
+            // A tet that closes a new triangle lies on the fin: its faces through `s` are
+            // the fin's, with no seam across.
+            if up[j]
+                || is_subface(FACE[f].map(|k| t[k]))
+                || closes_new_triangle(s, t, new)
+                || closes_new_triangle(s, &tets[j], new)
+            {
                 continue;
             }
             let mut seam = t.map(|v| if v == s { QU } else { v });

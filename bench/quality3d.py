@@ -20,12 +20,14 @@ are computed here from the output .node/.ele files with one piece of numpy code 
       triangulated surface are no small input angle by this measure (idmesh's own exemption
       rule in src/mesh3d/plc.rs `Sharp` is broader; idmesh's own count is shown as "exempt");
       angles between interior facets are not seen (an interior edge sums to 360 degrees);
-    * the largest radius-edge ratio (circumradius over shortest edge).
+    * the largest radius-edge ratio (circumradius over shortest edge), and the share of tets
+      above the bound 1.414 (issue 13, item 5: on the small-angle inputs no higher than
+      TetGen's).
 idmesh's first mesh of each case goes through ../shared/tools/verify3d.py --require-delaunay
 (untimed; --no-verify skips it).
 
 Inputs: the unit cube (examples/data/3d_cube.poly), ../shared/data/3d/{example.poly, sphere.off,
-fandisk.off, pipe.off}, and a cylinder (a 48-sided prism, height twice the radius, written by
+fandisk.off, pipe.off, wedge-1.smesh, spike-1-7.smesh, slit-1.smesh}, and a cylinder (a 48-sided prism, height twice the radius, written by
 the script). Volume bounds: V = 2 x (domain volume / target tets), with the domain volume taken
 from idmesh's -pq1.414 run (its -V "Volume:"), two significant digits.
 
@@ -65,6 +67,11 @@ INPUTS = {
     "fandisk": os.path.join(DATA3D, "fandisk.off"),
     "pipe": os.path.join(DATA3D, "pipe.off"),
     "cylinder": None,  # written by the script
+    # TetGen's small-angle test inputs (issue 13, item 5: the share of tets above the
+    # radius-edge bound, against TetGen's, where input angles are small).
+    "wedge": os.path.join(DATA3D, "wedge-1.smesh"),
+    "spike": os.path.join(DATA3D, "spike-1-7.smesh"),
+    "slit": os.path.join(DATA3D, "slit-1.smesh"),
 }
 
 
@@ -120,6 +127,10 @@ def dihedral_angles(xyz, ele):
         n = np.cross(p[:, b] - p[:, a], p[:, c] - p[:, a])
         # Outward: away from the opposite corner f.
         s = np.sign(np.einsum("ij,ij->i", n, p[:, f] - p[:, a]))
+        # A tet flat in floating point (a positive volume below rounding: four points on two
+        # lines through a spike's apex) has no side: either orientation gives its 0 and 180
+        # degree angles, where a zero sign would give NaN.
+        s[s == 0] = 1
         n = -n * s[:, None]
         normals.append(n / np.linalg.norm(n, axis=1)[:, None])
     out = []
@@ -190,6 +201,7 @@ def quality(stem):
     lo, hi = dih.min(axis=1), dih.max(axis=1)
     bad = (lo < 15.0) | (hi > 165.0)
     at_sharp = sharp_vertices(xyz, ele, dih)[ele].any(axis=1)
+    ratio = radius_edge(xyz, ele)
     n = len(ele)
     return {
         "tets": n,
@@ -203,7 +215,8 @@ def quality(stem):
         else None,
         "bad_elsewhere_max": float(hi[bad & ~at_sharp].max()) if (bad & ~at_sharp).any()
         else None,
-        "max_radius_edge": float(np.nanmax(radius_edge(xyz, ele))),
+        "max_radius_edge": float(np.nanmax(ratio)),
+        "pct_above_bound": 100.0 * float((ratio > float(RATIO)).sum()) / n,
     }
 
 
@@ -266,7 +279,7 @@ def fmt_angle(x):
 
 def row(case, r, markdown):
     if "error" in r:
-        cells = [case, r["tool"], "error: " + r["error"]] + [""] * 10
+        cells = [case, r["tool"], "error: " + r["error"]] + [""] * 11
     else:
         else_ = "-" if r["bad_elsewhere_min"] is None else "%s / %s" % (
             fmt_angle(r["bad_elsewhere_min"]), fmt_angle(r["bad_elsewhere_max"]))
@@ -275,14 +288,15 @@ def row(case, r, markdown):
                  "%.3f" % r["pct_below10"], "%.3f" % r["pct_below15"],
                  "{:,}".format(r["bad"]), "{:,}".format(r["bad_at_sharp"]), else_,
                  "-" if r.get("exempt") is None else str(r["exempt"]),
-                 "%.2f" % r["max_radius_edge"], "%.2f" % r["time_s"],
+                 "%.2f" % r["max_radius_edge"], "%.1f" % r["pct_above_bound"],
+                 "%.2f" % r["time_s"],
                  r.get("verify", "")]
     return ("| " + " | ".join(cells) + " |") if markdown else "  ".join(cells)
 
 
 HEADER = ["case", "tool", "tets", "min / max dihedral", "% < 10", "% < 15",
           "bad (<15 or >165)", "bad at sharp", "others' min / max", "idmesh exempt",
-          "max radius-edge", "time s", "verify3d --require-delaunay"]
+          "max radius-edge", "% above " + RATIO, "time s", "verify3d --require-delaunay"]
 
 
 def main():
@@ -305,7 +319,7 @@ def main():
     sizes = [None, 100_000] + ([1_000_000] if args.large else [])
     print("| " + " | ".join(HEADER) + " |" if args.markdown else "  ".join(HEADER))
     if args.markdown:
-        print("|" + "|".join(["---"] * 2 + ["--:"] * 10 + ["---"]) + "|")
+        print("|" + "|".join(["---"] * 2 + ["--:"] * 11 + ["---"]) + "|")
     for name in args.inputs.split(","):
         src = INPUTS[name]
         if src is None:

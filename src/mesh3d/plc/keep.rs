@@ -1161,14 +1161,11 @@ fn monotone_seam(
 /// Whether tet `t` of the star of `s` has one of the triangles `new` as its face opposite
 /// `s` (a tet flat on a fin, between the old subfaces around `s` and a new one).
 fn closes_new_triangle(s: u32, t: &[u32; 4], new: &[[u32; 3]]) -> bool {
-    let mut link: Vec<u32> = t.iter().copied().filter(|&v| v != s).collect();
-    link.sort_unstable();
-    link.len() == 3
-        && new.iter().any(|f| {
-            let mut f = *f;
-            f.sort_unstable();
-            f[..] == link[..]
-        })
+    let Some(k) = t.iter().position(|&v| v == s) else {
+        return false;
+    };
+    let link = fkey(FACE[k].map(|i| t[i]));
+    new.iter().any(|&f| fkey(f) == link)
 }
 
 /// The tets that replace the star of `s` on the free edge `ab` of a fin

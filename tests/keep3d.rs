@@ -327,12 +327,6 @@ fn assert_cube_with_fin(mesh: &TetMesh, inputs: usize, case: &str) {
     assert!((volume - 1.0).abs() < 1e-12, "{case}: volume {volume}");
 }
 
-/// Random triangle fins inside a cube, each with one to four points crowding its edges from
-/// one side or the other at 1e-2 to 1e-8, so that the conforming mesh puts Steiner points on
-/// the surface: `-Y` must take every one off again, the points on a fin's free edges by two
-/// points past the edge (`suppress_on_fin`), with and without a quality bound. Before the
-/// seam between the two cones was chosen as a path of growing angle around the point (with a
-/// tilted direction where the fin's normal gives none), about one case in four was refused.
 /// A splitmix64 stream of uniform numbers in [0, 1) from `seed`: the same cases on every run.
 fn splitmix(seed: u64) -> impl FnMut() -> f64 {
     let mut state = seed;
@@ -375,6 +369,12 @@ fn random_fin(unit: &mut impl FnMut() -> f64) -> Plc {
     plc
 }
 
+/// Random triangle fins inside a cube, each with one to four points crowding its edges from
+/// one side or the other at 1e-2 to 1e-8, so that the conforming mesh puts Steiner points on
+/// the surface: `-Y` must take every one off again, the points on a fin's free edges by two
+/// points past the edge (`suppress_on_fin`), with and without a quality bound. Before the
+/// seam between the two cones was chosen as a path of growing angle around the point (with a
+/// tilted direction where the fin's normal gives none), about one case in four was refused.
 #[test]
 fn random_fins_keep_their_surface() {
     let mut unit = splitmix(0x5eed_f1e5);

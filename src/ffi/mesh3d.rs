@@ -526,6 +526,8 @@ pub unsafe extern "C" fn idm_mesher3d_set_options(
                 keep_surface: o.keep_surface != 0,
                 merge_coplanar: o.coplanar_tolerance > 0.0,
                 coplanar_tolerance: positive(o.coplanar_tolerance),
+                // The C API's meshers take a PLC; remeshing is the TetGen interface's `-r`.
+                remesh: false,
                 verbose: o.verbose != 0,
                 min_dihedral: Some(o.min_dihedral),
                 surface_input: o.surface_input != 0,

@@ -15,6 +15,18 @@
 //! marker, they are exactly coplanar (exact orientation tests), and they lie on opposite sides
 //! of the edge (a fold back onto itself is kept).
 //!
+//! **Remeshing (TetGen's `-r`, [`super::Options3::remesh`]).** The facets are then the
+//! boundary faces of a previous mesh, whose Steiner points on a slanted facet were rounded
+//! off its plane: the faces of one flat side are coplanar only up to that rounding. Kept
+//! apart, the edges between them are input edges that cannot flip as the side is refined:
+//! every new point near one forces a split, and a thin wedge remeshed at a quarter of its
+//! volume bound made eleven times the tets of meshing it directly. So two faces are merged
+//! when every vertex of each lies within 2^-40 times the largest coordinate magnitude
+//! involved of the other's plane (the floating-point value of the exact `orient3d`, divided
+//! by twice the face's area). Nothing is moved: the merged facet's vertices lie a hair off
+//! its plane, as the mesher's own Steiner points on it do, and its facet mesh decides in the
+//! plane as it does for them.
+//!
 //! **Tolerance (opt-in, [`snap_nearly_coplanar`]).** Exact conformity to the input is the
 //! default: a fold of 10⁻⁹ between two facets is kept, and the flat tetrahedron it may leave is
 //! for sliver removal to fix. With a tolerance `tol` (TetGen's `-T`), facets that would be
@@ -60,14 +72,14 @@ use super::features::{dominant_axis, ekey, proj};
 
 /// The input with each group of mergeable facets replaced by one facet, or `None` when no two
 /// facets can be merged (the input is used as it is).
-pub(crate) fn merge_coplanar_facets(plc: &Plc) -> Option<Plc> {
+pub(crate) fn merge_coplanar_facets(plc: &Plc, rounded: bool) -> Option<Plc> {
     let info: Vec<Option<Loop>> = plc.facets.iter().map(|f| Loop::of(plc, f)).collect();
     let uses = edge_uses(plc);
     let mut groups = UnionFind::new(plc.facets.len());
     let mut merged: crate::hash::FastSet<u64> = Default::default();
     for (&key, u) in &uses {
         if let [(f1, d1), (f2, d2)] = u.as_slice() {
-            if mergeable(plc, &info, (*f1, *d1), (*f2, *d2)) {
+            if mergeable(plc, &info, (*f1, *d1), (*f2, *d2), rounded) {
                 merged.insert(key);
                 groups.union(*f1, *f2);
             }
@@ -181,15 +193,44 @@ fn edge_uses(plc: &Plc) -> HashMap<u64, Vec<(u32, bool)>> {
     uses
 }
 
-/// Whether the two facet uses of one edge can be merged (see the module comment).
-fn mergeable(plc: &Plc, info: &[Option<Loop>], u1: (u32, bool), u2: (u32, bool)) -> bool {
+/// Whether the two facet uses of one edge can be merged (see the module comment); with
+/// `rounded`, coplanar up to [`ROUNDED`].
+fn mergeable(
+    plc: &Plc,
+    info: &[Option<Loop>],
+    u1: (u32, bool),
+    u2: (u32, bool),
+    rounded: bool,
+) -> bool {
     let Some((l1, l2)) = joinable(plc, info, u1, u2) else {
         return false;
     };
-    let [a, b, c] = l1.plane.map(|v| plc.points[v as usize]);
-    l2.verts
-        .iter()
-        .all(|&v| orient3d(a, b, c, plc.points[v as usize]) == 0.0)
+    let on_plane = |l: &Loop, other: &Loop| {
+        let [a, b, c] = l.plane.map(|v| plc.points[v as usize]);
+        let (pa, pb, pc) = (DVec3::from(a), DVec3::from(b), DVec3::from(c));
+        let twice_area = (pb - pa).cross(pc - pa).length();
+        other.verts.iter().all(|&v| {
+            let p = plc.points[v as usize];
+            let o = orient3d(a, b, c, p);
+            // |orient3d| is the distance from the plane times twice the triangle's area.
+            o == 0.0 || rounded && o.abs() <= ROUNDED * max_abs([a, b, c, p]) * twice_area
+        })
+    };
+    on_plane(l1, l2) && (!rounded || on_plane(l2, l1))
+}
+
+/// With [`Options3::remesh`](super::Options3::remesh): the largest distance from a facet's
+/// plane, relative to the largest coordinate magnitude involved, at which a neighbour's
+/// vertex counts as on it. 2^-40 is 4,096 units in the last place of that magnitude: a
+/// Steiner point constructed on a plane and rounded lies within a few units of it (the
+/// plane is spanned by three such points, which tilts it by as much again across a face),
+/// and a fold this flat (an angle of about 1e-12 on a face as large as the model) is no
+/// feature a floating-point input can show.
+const ROUNDED: f64 = 1.0 / (1u64 << 40) as f64;
+
+/// The largest coordinate magnitude of `ps`.
+fn max_abs(ps: [[f64; 3]; 4]) -> f64 {
+    ps.iter().flatten().fold(0.0, |m: f64, x| m.max(x.abs()))
 }
 
 /// The loops of the two facet uses of one edge when they meet every condition of the merge
@@ -693,7 +734,7 @@ mod tests {
     #[test]
     fn two_coplanar_triangles_become_one_quadrilateral() {
         let plc = square(tri(0, 1, 4, 1), [1, 1]);
-        let out = merge_coplanar_facets(&plc).expect("the square's halves merge");
+        let out = merge_coplanar_facets(&plc, false).expect("the square's halves merge");
         assert_eq!(out.facets.len(), 2);
         let mut quad = out.facets[0].polygons[0].clone();
         assert_eq!(
@@ -708,11 +749,11 @@ mod tests {
 
     #[test]
     fn different_markers_folds_and_third_facets_block_merging() {
-        assert!(merge_coplanar_facets(&square(tri(0, 1, 4, 1), [1, 2])).is_none());
+        assert!(merge_coplanar_facets(&square(tri(0, 1, 4, 1), [1, 2]), false).is_none());
         // (0, 1, 5) is coplanar with (0, 1, 2) but on the other side of 0-1: merged; a
         // triangle folded back onto (0, 1, 2) along 0-1 is not.
         let other_side = square(tri(1, 0, 5, 1), [1, 1]);
-        let out = merge_coplanar_facets(&other_side).unwrap();
+        let out = merge_coplanar_facets(&other_side, false).unwrap();
         assert_eq!(out.facets.len(), 1);
         let folded = Plc {
             points: vec![
@@ -724,11 +765,37 @@ mod tests {
             facets: vec![tri(0, 1, 2, 1), tri(1, 0, 3, 1)],
             ..Plc::default()
         };
-        assert!(merge_coplanar_facets(&folded).is_none());
+        assert!(merge_coplanar_facets(&folded, false).is_none());
         // A free segment on the diagonal keeps it.
         let mut seg = square(tri(0, 1, 4, 1), [1, 1]);
         seg.segments.push([2, 0]);
-        assert!(merge_coplanar_facets(&seg).is_none());
+        assert!(merge_coplanar_facets(&seg, false).is_none());
+    }
+
+    #[test]
+    fn rounded_neighbours_merge_when_remeshing_and_real_folds_never() {
+        // The square's corner 3 lifted by a few units in the last place (a rounded Steiner
+        // point), then by 1e-9 (a fold).
+        let lifted = |dz: f64| {
+            let mut plc = square(tri(0, 1, 4, 1), [1, 1]);
+            plc.points[3][2] = dz;
+            plc
+        };
+        let rounded = lifted(4.0 * f64::EPSILON);
+        assert!(merge_coplanar_facets(&rounded, false).is_none(), "exact");
+        let out = merge_coplanar_facets(&rounded, true).expect("coplanar up to rounding");
+        assert_eq!(out.facets.len(), 2);
+        assert!(merge_coplanar_facets(&lifted(1e-9), true).is_none());
+        // The bound follows the coordinates: the same square moved by 1e6 merges a lift of a
+        // few units in the last place of 1e6, and the fold stays.
+        let moved = |dz: f64| {
+            let mut plc = lifted(0.0);
+            plc.points.iter_mut().for_each(|p| p[0] += 1e6);
+            plc.points[3][2] = dz;
+            plc
+        };
+        assert!(merge_coplanar_facets(&moved(4.0 * 1e6 * f64::EPSILON), true).is_some());
+        assert!(merge_coplanar_facets(&moved(1e-3), true).is_none());
     }
 
     #[test]
@@ -747,7 +814,7 @@ mod tests {
         for i in 0..4 {
             plc.facets.push(tri(i, (i + 1) % 4, 4, 3));
         }
-        let out = merge_coplanar_facets(&plc).unwrap();
+        let out = merge_coplanar_facets(&plc, false).unwrap();
         assert_eq!(out.facets.len(), 1);
         let f = &out.facets[0];
         assert_eq!(f.marker, 3);
@@ -773,7 +840,7 @@ mod tests {
             ring.facets.push(tri(i, j, 4 + j, 1));
             ring.facets.push(tri(i, 4 + j, 4 + i, 1));
         }
-        let out = merge_coplanar_facets(&ring).unwrap();
+        let out = merge_coplanar_facets(&ring, false).unwrap();
         assert_eq!(out.facets.len(), 1);
         let mut sizes: Vec<usize> = out.facets[0].polygons.iter().map(|p| p.len()).collect();
         sizes.sort_unstable();

@@ -129,6 +129,14 @@ pub struct Options3 {
     /// default: a flat tetrahedron between nearly coplanar facets is then for sliver removal
     /// to fix. Must be positive and at most [`MAX_COPLANAR_TOLERANCE`]. Default: `None`.
     pub coplanar_tolerance: Option<f64>,
+    /// The facets are the boundary faces of a previous mesh (TetGen's `-r`; the `tetgen`
+    /// switches set it): with `merge_coplanar`, neighbouring facets that are coplanar up to the
+    /// rounding of that mesh's Steiner points are merged as exactly coplanar ones are (see the
+    /// `coplanar` module's docs for the bound). A Steiner point on a slanted facet is rounded
+    /// off its plane, so the faces of one flat side are not exactly coplanar; kept apart, the
+    /// edges between them are input edges that cannot flip as the side is refined and must be
+    /// split wherever a new point comes near. Default: `false`.
+    pub remesh: bool,
     /// Mesh optimisation (TetGen's `-O<level>`): after meshing, `optimize_level` passes (0 to
     /// [`MAX_LEVEL`]) of flips and smoothing of interior Steiner vertices that improve the
     /// extreme dihedral angles and never make them worse; the mesh is then no longer Delaunay
@@ -175,6 +183,7 @@ impl fmt::Debug for Options3 {
             .field("facet_max_area", &self.facet_max_area)
             .field("segment_max_length", &self.segment_max_length)
             .field("coplanar_tolerance", &self.coplanar_tolerance)
+            .field("remesh", &self.remesh)
             .field("optimize_level", &self.optimize_level)
             .field("optimize_scheme", &self.optimize_scheme)
             .field("optimize_max_dihedral", &self.optimize_max_dihedral)
@@ -242,7 +251,7 @@ pub fn tetrahedralize(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
             };
             let plc = snapped.as_ref().unwrap_or(plc);
             let merged = merge
-                .then(|| coplanar::merge_coplanar_facets(plc))
+                .then(|| coplanar::merge_coplanar_facets(plc, opts.remesh))
                 .flatten();
             let mut mesh = plc::mesh_plc(merged.as_ref().unwrap_or(plc), opts)?;
             if opts.optimize_level > 0 {

@@ -203,6 +203,7 @@ pub fn mesh_for(
             keep = Some((map, plc.clone()));
         }
         work = Some(p);
+        opts.remesh = true;
         opts.region_attributes |= !given.attributes.is_empty();
         opts.region_max_volume |= sw.region_volume && !given.volumes.is_empty();
     }
@@ -949,6 +950,80 @@ mod tests {
         }
         let e = mesh_for(&sw("r"), &input, Options3::default(), &Extra::default()).unwrap_err();
         assert!(e.to_string().contains("-r"), "{e}");
+    }
+
+    #[test]
+    fn a_thin_slanted_wedge_is_remeshed_as_it_is_meshed() {
+        // A wedge 0.05 thick at x = 1 and 0 at x = 0: the Steiner points on its slanted side
+        // are rounded off that side's plane, so the given mesh's faces there are not exactly
+        // coplanar. Kept apart, their edges had to be split wherever new points came near:
+        // -r made 5,206 tets where meshing the wedge at the same bound makes 476.
+        let h = 0.05;
+        let mut points = Vec::new();
+        for &x in &[0.0, 1.0] {
+            for &y in &[0.0, 1.0] {
+                points.push([x, y, 0.0]);
+                if x == 1.0 {
+                    points.push([x, y, h]);
+                }
+            }
+        }
+        // 0 (0,0,0), 1 (0,1,0), 2 (1,0,0), 3 (1,0,h), 4 (1,1,0), 5 (1,1,h).
+        let facet = |v: &[u32], marker| crate::input3d::Facet {
+            polygons: vec![v.to_vec()],
+            holes: Vec::new(),
+            marker,
+        };
+        let wedge = Plc {
+            points,
+            facets: vec![
+                facet(&[0, 2, 4, 1], 1),
+                facet(&[0, 3, 5, 1], 2),
+                facet(&[0, 2, 3], 3),
+                facet(&[1, 4, 5], 3),
+                facet(&[2, 4, 5, 3], 4),
+            ],
+            ..Plc::default()
+        };
+        let run = |text: &str, plc: &Plc, extra: &Extra| {
+            let s = sw(text);
+            mesh_for(&s, plc, s.options(), extra).unwrap().0
+        };
+        let coarse = run("pq1.414a0.0005", &wedge, &Extra::default());
+        let slanted = |p: &[f64; 3]| p[2] != 0.0 && p[0] != 1.0 && p[2] != h * p[0];
+        assert!(
+            coarse.vertices.iter().any(slanted),
+            "some point on the slanted side is rounded off its plane"
+        );
+        let direct = run("pq1.414a0.0001", &wedge, &Extra::default());
+        let given = Extra {
+            given: Some(GivenMesh {
+                tets: coarse.tets.clone(),
+                faces: coarse.faces.clone(),
+                face_markers: coarse.face_markers.clone(),
+                ..GivenMesh::default()
+            }),
+            ..Extra::default()
+        };
+        let input = Plc {
+            points: coarse.vertices.clone(),
+            ..Plc::default()
+        };
+        let remeshed = run("rq1.414a0.0001", &input, &given);
+        assert_eq!(&remeshed.vertices[..input.points.len()], &input.points[..]);
+        assert!(
+            remeshed.tets.len() * 2 <= direct.tets.len() * 3,
+            "-r: {} tets, meshed directly: {}",
+            remeshed.tets.len(),
+            direct.tets.len()
+        );
+        let volume: f64 = (0..remeshed.tets.len())
+            .map(|t| crate::geometry::tet_volume(remeshed.corners(t)))
+            .sum();
+        assert!((volume - h / 2.0).abs() < 1e-12, "volume {volume}");
+        for m in 1..=4 {
+            assert!(remeshed.face_markers.contains(&m), "marker {m} kept");
+        }
     }
 
     #[test]

@@ -135,7 +135,9 @@ pub struct Options3 {
     /// `coplanar` module's docs for the bound). A Steiner point on a slanted facet is rounded
     /// off its plane, so the faces of one flat side are not exactly coplanar; kept apart, the
     /// edges between them are input edges that cannot flip as the side is refined and must be
-    /// split wherever a new point comes near. Default: `false`.
+    /// split wherever a new point comes near. Should meshing the facets so merged end in an
+    /// internal error (some real models' remeshes still do), the exactly merged facets are
+    /// meshed instead. Default: `false`.
     pub remesh: bool,
     /// Mesh optimisation (TetGen's `-O<level>`): after meshing, `optimize_level` passes (0 to
     /// [`MAX_LEVEL`]) of flips and smoothing of interior Steiner vertices that improve the
@@ -253,7 +255,23 @@ pub fn tetrahedralize(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
             let merged = merge
                 .then(|| coplanar::merge_coplanar_facets(plc, opts.remesh))
                 .flatten();
-            let mut mesh = plc::mesh_plc(merged.as_ref().unwrap_or(plc), opts)?;
+            let mut mesh = match plc::mesh_plc(merged.as_ref().unwrap_or(plc), opts) {
+                // Facets merged up to rounding still end some real models' remeshes in an
+                // internal error (fandisk.off and knot.off, -pq1.414 then -rq1.414a0.0005:
+                // "subsegment too short to split") that the exactly merged facets do not:
+                // those runs are made again with the exact merge, as before the rounded one.
+                Err(Error::Internal(e)) if opts.remesh && merge => {
+                    if opts.verbose {
+                        eprintln!(
+                            "idmesh: -r: meshing the facets merged up to rounding failed ({e}); \
+                             meshing with the exactly coplanar ones merged"
+                        );
+                    }
+                    let exact = coplanar::merge_coplanar_facets(plc, false);
+                    plc::mesh_plc(exact.as_ref().unwrap_or(plc), opts)?
+                }
+                other => other?,
+            };
             if opts.optimize_level > 0 {
                 // Reported in the Slivers stage; `mesh_plc` enters Output only without -O.
                 stage(Stage::Slivers, || (0, 0))?;

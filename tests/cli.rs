@@ -431,7 +431,7 @@ fn poly_with_zero_vertices_reads_the_node_file() {
 
 #[test]
 fn segments_enclosing_no_area_give_an_empty_mesh_and_a_warning_naming_an_open_end() {
-    // The unit square without its left side (Triangle's box.poly case): as Triangle, an
+    // The unit square without its left side (as in Triangle's box example): as Triangle, an
     // empty mesh and exit status 0; the warning names an open end, numbered as in the file.
     let d = TempDir::new("open");
     let open = SQUARE.replace("4 1\n", "3 1\n").replace("4 4 1 7\n", "");

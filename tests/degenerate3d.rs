@@ -850,8 +850,9 @@ fn bug_f_prism_with_thin_hole_radius_edge_2() {
     run_all(&plc, &spec, &[quality(2.0)]);
 }
 
-/// The star of vertex 4850 of fandisk.off (its six surface triangles, coordinates as in the
-/// file) closed by an apex below it. Two edges of one triangle meet at the vertex at 30.1°.
+/// The star of one vertex of a CAD-like surface model (its six surface triangles, coordinates
+/// as in that model) closed by an apex below it. Two edges of one triangle meet at the vertex
+/// at 30.1°.
 fn fandisk_wedge_plc() -> Plc {
     let points = [
         [-0.001, -0.17341, 0.47099],
@@ -882,7 +883,7 @@ fn fandisk_wedge_plc() -> Plc {
 
 #[test]
 fn bug_g_narrow_wedge_in_a_facet_does_not_cascade() {
-    // Was (fandisk.off -pq1.2): no end without a volume bound, "facet point refused" with
+    // Was (that surface model, -pq1.2): no end without a volume bound, "facet point refused" with
     // one. With the bound 1.2, the tet of vertex 0 and three split points at one distance from
     // it on its edges (two of them the 30.1° wedge) has radius-edge ratio 1.38 at every scale;
     // its circumcentre encroaches the wedge subface, whose split encroaches the wedge

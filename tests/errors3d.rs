@@ -570,7 +570,7 @@ fn facets_meeting_improperly() {
 #[test]
 fn a_facet_in_another_facets_hole_is_fine_only_with_the_hole_seed() {
     // The top face with a square window (facet hole seed) and a lid facet in the window, as
-    // TetGen's example.poly does.
+    // TetGen's own example PLC does.
     let mut p = cube();
     let w: Vec<u32> = [[0.25, 0.25], [0.75, 0.25], [0.75, 0.75], [0.25, 0.75]]
         .into_iter()

@@ -137,7 +137,7 @@ fn tiny_segment_scaled_up_is_meshed() {
     assert!(m.complete);
 }
 
-/// The letter A of the shared data (`A.poly`, Triangle's example) with `-pc`: the convex
+/// The letter A of Triangle's examples with `-pc`: the convex
 /// hull's edge from the apex makes a 3.5° angle with the segment there, and the hull
 /// segment's split points were taken for corners (they lie on no input segment, as
 /// crossing points do), so it was split at midpoints instead of on the apex's shells and the

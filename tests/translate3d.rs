@@ -1,8 +1,8 @@
-//! Translation invariance of 3D meshing (issue 14): an input moved far from the origin is
-//! meshed as the original, not forever. `u.off` translated by 1e6 hung with `-p`, `-pq` and
+//! Translation invariance of 3D meshing (issue 14): an input moved far from the origin is meshed as
+//! the original, not forever. A U-shaped surface model translated by 1e6 hung with `-p`, `-pq` and
 //! `-pY` (the original takes 0.03 s): every split point was rounded to the 1.2e-10 grid of
-//! coordinates near 1e6, off its edge and its facet's plane, and the facet meshes and the 3D
-//! mesh then broke the near-ties of the walls' rectangles differently, without end. The
+//! coordinates near 1e6, off its edge and its facet's plane, and the facet meshes and the 3D mesh
+//! then broke the near-ties of the walls' rectangles differently, without end. The
 //! input here is built the same way: a U-shaped prism whose walls are rectangles split into
 //! two triangles, with coordinates of seven decimal digits.
 

@@ -257,9 +257,10 @@ pub fn tetrahedralize(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
                 .flatten();
             let mut mesh = match plc::mesh_plc(merged.as_ref().unwrap_or(plc), opts) {
                 // Facets merged up to rounding still end some real models' remeshes in an
-                // internal error (fandisk.off and knot.off, -pq1.414 then -rq1.414a0.0005:
-                // "subsegment too short to split") that the exactly merged facets do not:
-                // those runs are made again with the exact merge, as before the rounded one.
+                // internal error (two CAD-like surface models, meshed with -pq1.414 and then
+                // remeshed with -rq1.414a0.0005: "subsegment too short to split") that the
+                // exactly merged facets do not: those runs are made again with the exact merge,
+                // as before the rounded one.
                 Err(Error::Internal(e)) if opts.remesh && merge => {
                     if opts.verbose {
                         eprintln!(

@@ -27,6 +27,15 @@
 //! its plane, as the mesher's own Steiner points on it do, and its facet mesh decides in the
 //! plane as it does for them.
 //!
+//! A group whose boundary runs straight through one of its vertices up to rounding but not
+//! exactly (the previous mesh's split points on a straight slanted edge) is merged only where
+//! its facets are exactly coplanar (as before merging up to rounding). In one facet mesh such a
+//! chain leaves outside triangles thinner than the rounding of a split point on the chain,
+//! which then lands beyond them: the subsegment next to it went missing from the facet mesh at
+//! every split, down to the precision limit (two CAD-like models remeshed with
+//! `-rq1.414a0.0005`). Faces kept apart put the two edges of such a vertex in different facets,
+//! where it does no harm.
+//!
 //! **Tolerance (opt-in, [`snap_nearly_coplanar`]).** Exact conformity to the input is the
 //! default: a fold of 10⁻⁹ between two facets is kept, and the flat tetrahedron it may leave is
 //! for sliver removal to fix. With a tolerance `tol` (TetGen's `-T`), facets that would be
@@ -75,14 +84,31 @@ use super::features::{dominant_axis, ekey, proj};
 pub(crate) fn merge_coplanar_facets(plc: &Plc, rounded: bool) -> Option<Plc> {
     let info: Vec<Option<Loop>> = plc.facets.iter().map(|f| Loop::of(plc, f)).collect();
     let uses = edge_uses(plc);
-    let mut groups = UnionFind::new(plc.facets.len());
-    let mut merged: crate::hash::FastSet<u64> = Default::default();
-    for (&key, u) in &uses {
-        if let [(f1, d1), (f2, d2)] = u.as_slice() {
-            if mergeable(plc, &info, (*f1, *d1), (*f2, *d2), rounded) {
-                merged.insert(key);
-                groups.union(*f1, *f2);
+    // How each facet may merge: 2 up to rounding, 1 exactly coplanar only.
+    let mut level = vec![if rounded { 2u8 } else { 1 }; plc.facets.len()];
+    let (mut groups, mut merged) = group_facets(plc, &info, &uses, &level);
+    // Remeshing, a group whose boundary runs straight through a vertex up to rounding is
+    // merged only where exactly coplanar (see the module comment).
+    if rounded {
+        let mut members: HashMap<u32, Vec<u32>> = HashMap::default();
+        for f in 0..plc.facets.len() as u32 {
+            members.entry(groups.find(f)).or_default().push(f);
+        }
+        let mut kinked = false;
+        for (&root, group) in &members {
+            if group.len() > 1
+                && union_facet(plc, &info, group, &merged).is_some_and(|u| {
+                    has_rounded_straight_vertex(plc, &u, info[root as usize].as_ref())
+                })
+            {
+                kinked = true;
+                for &f in group {
+                    level[f as usize] -= 1;
+                }
             }
+        }
+        if kinked {
+            (groups, merged) = group_facets(plc, &info, &uses, &level);
         }
     }
     if merged.is_empty() {
@@ -111,6 +137,53 @@ pub(crate) fn merge_coplanar_facets(plc: &Plc, rounded: bool) -> Option<Plc> {
         }
     }
     Some(out)
+}
+
+/// The groups of facets to merge and the edges merged: two facets of `level` 2 merge when
+/// coplanar up to rounding, else when exactly coplanar.
+fn group_facets(
+    plc: &Plc,
+    info: &[Option<Loop>],
+    uses: &HashMap<u64, Vec<(u32, bool)>>,
+    level: &[u8],
+) -> (UnionFind, crate::hash::FastSet<u64>) {
+    let mut groups = UnionFind::new(plc.facets.len());
+    let mut merged: crate::hash::FastSet<u64> = Default::default();
+    for (&key, u) in uses {
+        if let [(f1, d1), (f2, d2)] = u.as_slice() {
+            let lv = |f: u32| level.get(f as usize).copied().unwrap_or(0);
+            let l = lv(*f1).min(lv(*f2));
+            if l > 0 && mergeable(plc, info, (*f1, *d1), (*f2, *d2), l == 2) {
+                merged.insert(key);
+                groups.union(*f1, *f2);
+            }
+        }
+    }
+    (groups, merged)
+}
+
+/// Whether a boundary loop of the merged facet `u` runs straight through one of its vertices
+/// up to rounding but not exactly: the vertex lies within [`ROUNDED`] times the largest
+/// coordinate magnitude of the line through its two neighbours on the loop, between them, and
+/// off it. Lines through the facet's inside are not checked: regular refinement puts split
+/// points on the lines of earlier ones, and refusing those merges brought the thin wedge's
+/// over-refinement back.
+fn has_rounded_straight_vertex(plc: &Plc, u: &Facet, l: Option<&Loop>) -> bool {
+    let Some(l) = l else { return false };
+    let p = |v: u32| plc.points[v as usize];
+    u.polygons.iter().filter(|lp| lp.len() >= 3).any(|lp| {
+        let k = lp.len();
+        (0..k).any(|i| {
+            let (x, y, c) = (p(lp[(i + k - 1) % k]), p(lp[i]), p(lp[(i + 1) % k]));
+            let (qx, qy, qc) = (proj(x, l.axis), proj(y, l.axis), proj(c, l.axis));
+            let o = orient2d(qx, qy, qc);
+            let (dx, dy) = (qc[0] - qx[0], qc[1] - qx[1]);
+            let along = (qy[0] - qx[0]) * dx + (qy[1] - qx[1]) * dy;
+            let len2 = dx * dx + dy * dy;
+            let scale = max_abs([x, y, c, c]);
+            o != 0.0 && o.abs() <= ROUNDED * scale * len2.sqrt() && along > 0.0 && along < len2
+        })
+    })
 }
 
 /// A single-loop facet: its loop, projection axis and the loop's orientation in projection.
@@ -796,6 +869,38 @@ mod tests {
         };
         assert!(merge_coplanar_facets(&moved(4.0 * 1e6 * f64::EPSILON), true).is_some());
         assert!(merge_coplanar_facets(&moved(1e-3), true).is_none());
+    }
+
+    #[test]
+    fn a_boundary_straight_up_to_rounding_is_merged_only_where_exactly_coplanar() {
+        // The square with its corner 3 lifted a few units in the last place off z = 0, as a
+        // rounded Steiner point is, and its left side running through vertex 5, `dx` off the
+        // line x = 0. Triangles (0, 1, 2) and (0, 2, 5) lie exactly in z = 0.
+        let plc = |dx: f64| Plc {
+            points: vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 4.0 * f64::EPSILON],
+                [0.5, 0.5, 1.0],
+                [dx, 0.5, 0.0],
+            ],
+            facets: vec![tri(0, 1, 2, 1), tri(0, 2, 5, 1), tri(5, 2, 3, 1)],
+            ..Plc::default()
+        };
+        // Exactly straight, or visibly bent: one facet.
+        for dx in [0.0, -1e-3] {
+            let out = merge_coplanar_facets(&plc(dx), true).unwrap();
+            assert_eq!(out.facets.len(), 1, "dx = {dx}");
+        }
+        // Straight up to rounding: the exactly coplanar triangles merge (their boundary
+        // 0-1-2-5 bends visibly at 5), the lifted one stays apart.
+        let out = merge_coplanar_facets(&plc(-1e-17), true).unwrap();
+        assert_eq!(out.facets.len(), 2);
+        let mut quad = out.facets[0].polygons[0].clone();
+        quad.sort_unstable();
+        assert_eq!(quad, vec![0, 1, 2, 5]);
+        assert_eq!(out.facets[1], plc(-1e-17).facets[2]);
     }
 
     #[test]

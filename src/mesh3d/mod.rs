@@ -256,11 +256,11 @@ pub fn tetrahedralize(plc: &Plc, opts: &Options3) -> Result<TetMesh, Error> {
                 .then(|| coplanar::merge_coplanar_facets(plc, opts.remesh))
                 .flatten();
             let mut mesh = match plc::mesh_plc(merged.as_ref().unwrap_or(plc), opts) {
-                // Facets merged up to rounding still end some real models' remeshes in an
-                // internal error (two CAD-like surface models, meshed with -pq1.414 and then
-                // remeshed with -rq1.414a0.0005: "subsegment too short to split") that the
-                // exactly merged facets do not: those runs are made again with the exact merge,
-                // as before the rounded one.
+                // Facets merged up to rounding can still end a remesh in an internal error
+                // that the exactly merged ones do not (a CAD rotor remeshed with
+                // -rq1.414a0.0005: a point inside a merged facet in line with two of its
+                // boundary vertices up to rounding makes a flat subface): the run is then made
+                // again with the exact merge.
                 Err(Error::Internal(e)) if opts.remesh && merge => {
                     if opts.verbose {
                         eprintln!(

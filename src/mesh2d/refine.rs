@@ -253,19 +253,9 @@ impl<'a> Refiner<'a> {
     /// missing ones are inserted as constrained edges (no Steiner point). Splitting for
     /// conformity comes later, once the exterior is carved away (`sweep_encroached`).
     pub fn register_segments(&mut self, pieces: &[Piece]) -> Result<(), Error> {
-        // The other ends of the pieces at each input point (an input point inside a segment
-        // ends two pieces of it, so a segment ending there is seen with both).
-        let mut ends: Vec<Vec<u32>> = vec![Vec::new(); self.n_input];
-        for pc in pieces {
-            for (v, w) in [(pc.a, pc.b), (pc.b, pc.a)] {
-                if let Some(list) = ends.get_mut(v as usize) {
-                    list.push(w);
-                }
-            }
-        }
-        for (v, list) in ends.iter().enumerate() {
-            self.apex[v] = self.is_sharp_corner(v as u32, list);
-        }
+        // An input point inside a segment ends two pieces of it, so a segment ending there
+        // is seen with both.
+        self.mark_sharp_corners(pieces.iter().map(|pc| (pc.a, pc.b)));
         for pc in pieces {
             let whole = self.pslg.segments[pc.input as usize];
             for v in [pc.a, pc.b] {
@@ -298,6 +288,27 @@ impl<'a> Refiner<'a> {
         Ok(())
     }
 
+    /// Marks as apexes the input vertices where two of the segments `segs` meet sharply
+    /// ([`Self::is_sharp_corner`]). Only the vertices that end a segment are visited: a
+    /// million scattered points have a few dozen hull segments, and a table of end lists for
+    /// every vertex took longer to allocate than the check itself.
+    fn mark_sharp_corners(&mut self, segs: impl Iterator<Item = (u32, u32)>) {
+        let mut ends: Vec<(u32, u32)> = segs
+            .flat_map(|(a, b)| [(a, b), (b, a)])
+            .filter(|&(v, _)| (v as usize) < self.n_input)
+            .collect();
+        ends.sort_unstable_by_key(|e| e.0);
+        let mut list = Vec::new();
+        for group in ends.chunk_by(|x, y| x.0 == y.0) {
+            let v = group[0].0;
+            list.clear();
+            list.extend(group.iter().map(|e| e.1));
+            if !self.apex[v as usize] && self.is_sharp_corner(v, &list) {
+                self.apex[v as usize] = true;
+            }
+        }
+    }
+
     /// Whether two of the segments from input point `v` to the points `ends` meet at less than
     /// 90 degrees (decided exactly): only there can splitting one segment encroach the other
     /// at the corner over and over, so only there are segments split on concentric shells;
@@ -326,22 +337,9 @@ impl<'a> Refiner<'a> {
         self.conforming = true;
         // Hull segments (`-c`) exist from here on: a sharp angle between one and an input
         // segment needs the shells as much as one between two input segments.
-        let mut ends: Vec<Vec<u32>> = vec![Vec::new(); self.n_input];
-        for seg in &self.cdt.segs {
-            if seg.a == NONE {
-                continue;
-            }
-            for (v, w) in [(seg.a, seg.b), (seg.b, seg.a)] {
-                if let Some(list) = ends.get_mut(v as usize) {
-                    list.push(w);
-                }
-            }
-        }
-        for (v, list) in ends.iter().enumerate() {
-            if !self.apex[v] {
-                self.apex[v] = self.is_sharp_corner(v as u32, list);
-            }
-        }
+        let segs = std::mem::take(&mut self.cdt.segs);
+        self.mark_sharp_corners(segs.iter().filter(|s| s.a != NONE).map(|s| (s.a, s.b)));
+        self.cdt.segs = segs;
         for s in 0..self.cdt.segs.len() {
             let Seg { a, b, .. } = self.cdt.segs[s];
             if a == NONE {

@@ -571,7 +571,32 @@ fn final_check_reports_the_same_for_any_thread_count() {
     let flipped = flip_an_edge(&m, 3 * n / 4);
     let flip_message = message(&flipped, 1);
     assert!(flip_message.contains("circumcircle"), "{flip_message}");
-    for broken in [turned, lost, flipped] {
+    // Links the fused pass does not read (to earlier triangles): a boundary edge of a late
+    // triangle linked to triangle 0, which does not link back (caught by the link counts),
+    // and a late triangle's link to an earlier neighbour moved to triangle 0.
+    let late = |want: &dyn Fn(u32) -> bool| {
+        (n / 2..n)
+            .find_map(|t| {
+                let i =
+                    (0..3).find(|&i| want(m.neighbors[t][i]) && !m.neighbors[t].contains(&0))?;
+                Some((t, i))
+            })
+            .expect("a late triangle with such a link")
+    };
+    let mut one_sided = m.clone();
+    let (t, i) = late(&|x| x == NONE);
+    one_sided.neighbors[t][i] = 0;
+    let one_sided_message = message(&one_sided, 1);
+    assert!(
+        one_sided_message.contains(&format!("triangles {t} and 0 are not mutual")),
+        "{one_sided_message}"
+    );
+    let mut moved = m.clone();
+    let (t, i) = late(&|x| x != NONE && (x as usize) < n / 4 && x > 0);
+    moved.neighbors[t][i] = 0;
+    let moved_message = message(&moved, 1);
+    assert!(moved_message.contains("not mutual"), "{moved_message}");
+    for broken in [turned, lost, flipped, one_sided, moved] {
         let one = message(&broken, 1);
         for threads in [2, 3, 4] {
             assert_eq!(message(&broken, threads), one);

@@ -179,19 +179,61 @@ fn locally_forgiving(m: &TriMesh, skip_segments: bool, threads: usize) -> Result
     let segs = SegmentIndex::new(m);
     let skip = |p: u32, q: u32| skip_segments && segs.wanted.contains_key(&(p.min(q), p.max(q)));
     let fused = in_chunks(m, 0, threads, |t| {
-        triangle_structure(m, t, true)?;
+        let links = triangle_structure(m, t, Adjacency::Later)?;
         segs.visit(m, t)?;
-        local_rule(m, t, &skip, &chains)
+        let forgiven = local_rule(m, t, &skip, &chains)?;
+        Ok(Tally { forgiven, ..links })
     });
-    let fused: Result<usize, String> = fused.into_iter().sum();
-    if let (Ok(forgiven), None) = (&fused, segs.missing(m)) {
-        return Ok(*forgiven);
+    let fused = fused
+        .into_iter()
+        .try_fold(Tally::default(), |mut sum, part| {
+            sum += part?;
+            Ok::<Tally, String>(sum)
+        });
+    if let (Ok(sum), None) = (&fused, segs.missing(m)) {
+        if sum.later == sum.earlier {
+            return Ok(sum.forgiven);
+        }
     }
     validate_structure(m, true, threads)?;
     let parts = in_chunks(m, 3, threads, |t| local_rule(m, t, &skip, &chains));
-    parts.into_iter().sum::<Result<usize, String>>()?;
+    let forgiven = parts.into_iter().sum::<Result<usize, String>>()?;
     // Not reached: a fault of the fused pass is found again by the passes one at a time.
-    fused
+    Ok(forgiven)
+}
+
+/// What the fused pass of [`locally_forgiving`] sums over the triangles.
+#[derive(Clone, Copy, Default)]
+struct Tally {
+    /// Locally non-Delaunay edges the chains forgave.
+    forgiven: usize,
+    /// Neighbour links [`triangle_structure`] checked with [`Adjacency::Later`] (to a later
+    /// triangle), and those it only counted (to an earlier one).
+    later: usize,
+    earlier: usize,
+}
+
+impl std::ops::AddAssign for Tally {
+    fn add_assign(&mut self, o: Tally) {
+        self.forgiven += o.forgiven;
+        self.later += o.later;
+        self.earlier += o.earlier;
+    }
+}
+
+/// How much of the neighbour table [`triangle_structure`] checks.
+#[derive(Clone, Copy, PartialEq)]
+enum Adjacency {
+    /// None of it.
+    No,
+    /// Every link: the neighbour is in range and links back across the same edge.
+    All,
+    /// Only links to later triangles, as `All` does; links to earlier ones are counted, not
+    /// read. With a triangle's neighbours distinct (checked), every checked link pairs with a
+    /// distinct earlier link of its neighbour, so when the two counts agree over the whole
+    /// mesh every link is paired and the table is as `All` would find it. Half the random
+    /// reads of `All` (the check is bound by them); a mismatch is told by rerunning `All`.
+    Later,
 }
 
 /// The local empty-circle rule at triangle `t`: across each edge to a later neighbour that
@@ -244,25 +286,24 @@ fn local_rule(
     Ok(forgiven)
 }
 
-/// Runs `check(t)` for every triangle `t`, in contiguous chunks on `threads` threads (pass
-/// `pass` of the progress reports, ticked by the first chunk; the others stop early once the
-/// first has failed), and returns each chunk's sum of results or its first error: the first
-/// error in triangle order is then the first error of the returned parts, whatever the
-/// thread count.
-fn in_chunks(
+/// Runs `check(t)` for every triangle `t`, in blocks dealt to `threads` threads
+/// ([`crate::threads::blocks`]; pass `pass` of the progress reports, ticked by the calling
+/// thread), and returns each block's sum of results or its first error: the first error in
+/// triangle order is then the first error of the returned parts, whatever the thread count.
+fn in_chunks<R: Default + std::ops::AddAssign + Send>(
     m: &TriMesh,
     pass: usize,
     threads: usize,
-    check: impl Fn(usize) -> Result<usize, String> + Sync,
-) -> Vec<Result<usize, String>> {
+    check: impl Fn(usize) -> Result<R, String> + Sync,
+) -> Vec<Result<R, String>> {
     let n = m.triangles.len();
-    crate::threads::chunks(n, threads, 1 << 16, |range, stop| {
-        let first = range.start == 0;
-        let mut sum = 0;
+    crate::threads::blocks(n, threads, 1 << 15, |range, block| {
+        let mut sum = R::default();
         for t in range {
-            if first {
-                tick_pass(m, pass, (t * threads).min(n))?;
-            } else if crate::threads::stopped(t, stop) {
+            if block.on_caller {
+                // Blocks are dealt in order: the caller's position is about the work done.
+                tick_pass(m, pass, t)?;
+            } else if block.stopped(t) {
                 break;
             }
             sum += check(t)?;
@@ -296,9 +337,10 @@ fn check_lengths(m: &TriMesh) -> Result<(), String> {
     Ok(())
 }
 
-/// Triangle `t`'s indices and orientation, and with `adjacency` its neighbours: in range,
-/// mutual, sharing the edge.
-fn triangle_structure(m: &TriMesh, t: usize, adjacency: bool) -> Result<usize, String> {
+/// Triangle `t`'s indices and orientation, and as `adjacency` says its neighbours: in range,
+/// mutual, sharing the edge. Counts the links it checked and those it left (see
+/// [`Adjacency::Later`]).
+fn triangle_structure(m: &TriMesh, t: usize, adjacency: Adjacency) -> Result<Tally, String> {
     let (nv, nt) = (m.vertices.len(), m.triangles.len());
     let tri = &m.triangles[t];
     if tri.iter().any(|&v| v as usize >= nv) {
@@ -308,14 +350,26 @@ fn triangle_structure(m: &TriMesh, t: usize, adjacency: bool) -> Result<usize, S
     if orient2d(a, b, c) <= 0.0 {
         return Err(format!("triangle {t} is not strictly counter-clockwise"));
     }
+    let mut links = Tally::default();
+    let nb = m.neighbors[t];
+    if adjacency == Adjacency::Later
+        && (0..3).any(|i| nb[i] != NONE && (nb[i] == nb[(i + 1) % 3] || nb[i] == t as u32))
+    {
+        return Err(format!("triangle {t} lists a neighbour twice or itself"));
+    }
     for i in 0..3 {
-        let n = m.neighbors[t][i];
-        if n == NONE || !adjacency {
+        let n = nb[i];
+        if n == NONE || adjacency == Adjacency::No {
             continue;
         }
         if n as usize >= nt {
             return Err(format!("triangle {t} has neighbour {n} out of range"));
         }
+        if adjacency == Adjacency::Later && (n as usize) < t {
+            links.earlier += 1;
+            continue;
+        }
+        links.later += 1;
         let (p, q) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
         let other = m.triangles[n as usize];
         let back = (0..3).find(|&j| m.neighbors[n as usize][j] == t as u32);
@@ -328,7 +382,7 @@ fn triangle_structure(m: &TriMesh, t: usize, adjacency: bool) -> Result<usize, S
             ));
         }
     }
-    Ok(0)
+    Ok(links)
 }
 
 /// The subsegments, hashed (the few, not the many edges), to check that every boundary edge
@@ -403,8 +457,15 @@ pub(super) fn validate_structure(
     threads: usize,
 ) -> Result<(), String> {
     check_lengths(m)?;
+    let adjacency = if adjacency {
+        Adjacency::All
+    } else {
+        Adjacency::No
+    };
     let parts = in_chunks(m, 0, threads, |t| triangle_structure(m, t, adjacency));
-    parts.into_iter().sum::<Result<usize, String>>()?;
+    for part in parts {
+        part?;
+    }
     let segs = SegmentIndex::new(m);
     let parts = in_chunks(m, 1, threads, |t| segs.visit(m, t));
     parts.into_iter().sum::<Result<usize, String>>()?;

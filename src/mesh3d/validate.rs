@@ -614,12 +614,12 @@ fn check_lengths(m: &TetMesh) -> Result<(), String> {
 /// Mutual, geometrically consistent neighbours (vertex indices already checked in range,
 /// every tet positively oriented).
 fn check_neighbours(m: &TetMesh, threads: usize) -> Result<(), String> {
-    let parts = crate::threads::chunks(m.tets.len(), threads, 1 << 16, |range, stop| {
-        let first = range.start == 0;
+    let parts = crate::threads::blocks(m.tets.len(), threads, 1 << 15, |range, block| {
         for t in range {
-            if first {
-                tick_pass(m, 2, (t * threads).min(m.tets.len()))?;
-            } else if crate::threads::stopped(t, stop) {
+            if block.on_caller {
+                // Blocks are dealt in order: the caller's position is about the work done.
+                tick_pass(m, 2, t)?;
+            } else if block.stopped(t) {
                 break;
             }
             neighbours_of(m, t)?;

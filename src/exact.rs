@@ -361,6 +361,41 @@ pub fn orient2d_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
 /// circle through the counter-clockwise `a, b, c`. Exact sign, approximate magnitude.
 #[inline(never)]
 pub fn incircle_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> f64 {
+    // The usual case, as in `orient3d_exact`: every coordinate difference is exact (nearby
+    // points; refinement meets it at every cocircular grid of Steiner points, where the exact
+    // stage decides a zero), and the determinant of the rounded differences is the exact one,
+    // at most 96 components, on the stack.
+    let diff = |p: [f64; 2], k: usize| two_diff(p[k], d[k]);
+    let dd = [a, b, c].map(|p| [diff(p, 0), diff(p, 1)]);
+    if dd.iter().all(|v| v[0].1 == 0.0 && v[1].1 == 0.0) {
+        let [[adx, ady], [bdx, bdy], [cdx, cdy]] = dd.map(|v| v.map(|x| x.0));
+        // (x² + y²)·m for the lifted point (x, y) and its opposite minor m.
+        let lifted = |x: f64, y: f64, m: &[f64]| {
+            let mut xm = [0.0; 8];
+            let nx = scale_into(m, x, &mut xm);
+            let mut xxm = [0.0; 16];
+            let nxx = scale_into(&xm[..nx], x, &mut xxm);
+            let mut ym = [0.0; 8];
+            let ny = scale_into(m, y, &mut ym);
+            let mut yym = [0.0; 16];
+            let nyy = scale_into(&ym[..ny], y, &mut yym);
+            let mut out = [0.0; 32];
+            let n = sum_into(&xxm[..nxx], &yym[..nyy], false, &mut out);
+            (out, n)
+        };
+        let mut m = [0.0; 4];
+        let n = two_two_diff(bdx, cdy, cdx, bdy, &mut m);
+        let (t1, n1) = lifted(adx, ady, &m[..n]);
+        let n = two_two_diff(cdx, ady, adx, cdy, &mut m);
+        let (t2, n2) = lifted(bdx, bdy, &m[..n]);
+        let n = two_two_diff(adx, bdy, bdx, ady, &mut m);
+        let (t3, n3) = lifted(cdx, cdy, &m[..n]);
+        let mut s12 = [0.0; 64];
+        let n12 = sum_into(&t1[..n1], &t2[..n2], false, &mut s12);
+        let mut det = [0.0; 96];
+        let n = sum_into(&s12[..n12], &t3[..n3], false, &mut det);
+        return det[..n].last().copied().unwrap_or(0.0);
+    }
     Scratch::with(|s| {
         let [adx, ady] = [0, 1].map(|k| s.diff(a[k], d[k]));
         let [bdx, bdy] = [0, 1].map(|k| s.diff(b[k], d[k]));
@@ -983,10 +1018,70 @@ mod tests {
             assert_eq!(sgn(insphere_exact(a, b, c, d, e)), want);
             let want = sgn(robust::orient3d(c3(a), c3(b), c3(c), c3(d)));
             assert_eq!(sgn(orient3d_exact(a, b, c, d)), want);
+            let c2 = |p: [f64; 3]| robust::Coord { x: p[0], y: p[1] };
+            let want = sgn(robust::incircle(c2(a), c2(b), c2(c), c2(d)));
+            assert_eq!(
+                sgn(incircle_exact(
+                    [a[0], a[1]],
+                    [b[0], b[1]],
+                    [c[0], c[1]],
+                    [d[0], d[1]]
+                )),
+                want
+            );
             let v = SCRATCH.take();
             longest = longest.max(v.len());
             SCRATCH.set(v);
         }
         assert!(longest > 512, "the scratch never grew: {longest}");
+    }
+
+    /// The stack path of `incircle_exact` (every coordinate difference exact) agrees with
+    /// `robust` on points of one dyadic grid at any scale and offset: on circles through grid
+    /// points (the cocircular quadruples refinement meets), just off them, and at random.
+    #[test]
+    fn incircle_exact_on_grids_matches_robust_and_finds_cocircular_points() {
+        let sgn = |x: f64| (x > 0.0) as i32 - (x < 0.0) as i32;
+        let c2 = |p: [f64; 2]| robust::Coord { x: p[0], y: p[1] };
+        // Integer points on the circle of radius 25 about the origin.
+        let circle: Vec<[i64; 2]> = (-25i64..=25)
+            .flat_map(|x| (-25i64..=25).map(move |y| [x, y]))
+            .filter(|&[x, y]| x * x + y * y == 625)
+            .collect();
+        assert!(circle.len() >= 12);
+        let mut rng = Rng(41);
+        let (mut zeros, mut exact_diffs) = (0, 0);
+        for k in 0..4000 {
+            let scale = 2f64.powi(rng.below(200) as i32 - 100);
+            let offset = [0; 2].map(|_| (rng.below(1 << 20) as f64 - 524288.0) * scale * 64.0);
+            let pick = |rng: &mut Rng| circle[rng.below(circle.len() as u64) as usize];
+            let [a, b, c, d] = [0; 4].map(|_| {
+                let mut q = pick(&mut rng);
+                match k % 3 {
+                    0 => {}
+                    1 if rng.below(4) == 0 => q[0] += rng.below(3) - 1,
+                    _ => q = [0; 2].map(|_| rng.below(61) - 30),
+                }
+                [
+                    offset[0] + q[0] as f64 * scale,
+                    offset[1] + q[1] as f64 * scale,
+                ]
+            });
+            if [a, b, c]
+                .iter()
+                .all(|p| (0..2).all(|i| two_diff(p[i], d[i]).1 == 0.0))
+            {
+                exact_diffs += 1;
+            }
+            let got = sgn(incircle_exact(a, b, c, d));
+            assert_eq!(
+                got,
+                sgn(robust::incircle(c2(a), c2(b), c2(c), c2(d))),
+                "{a:?} {b:?} {c:?} {d:?}"
+            );
+            zeros += (got == 0) as usize;
+        }
+        assert!(zeros > 1000, "only {zeros} cocircular quadruples");
+        assert!(exact_diffs > 3000, "the stack path ran {exact_diffs} times");
     }
 }

@@ -812,7 +812,7 @@ fn classify(r: &mut Refiner, pslg: &Pslg, opts: &Options) -> Result<(), Error> {
             continue;
         }
         if cdt.is_ghost(t) {
-            cdt.treg[t as usize] = EXTERIOR;
+            cdt.aux[t as usize].reg = EXTERIOR;
             if hull_mode {
                 // The hull edge is the ghost's finite edge; make it a boundary segment.
                 let v = cdt.tv[t as usize];
@@ -835,29 +835,29 @@ fn classify(r: &mut Refiner, pslg: &Pslg, opts: &Options) -> Result<(), Error> {
                 stack.push(t);
             }
         } else {
-            cdt.treg[t as usize] = NO_REGION;
+            cdt.aux[t as usize].reg = NO_REGION;
         }
     }
     let cdt = &mut r.cdt;
     cdt.flood(&mut stack, EXTERIOR);
     for (i, h) in pslg.holes.iter().enumerate() {
         let t = seed_triangle(cdt, *h).ok_or(InputError::HoleOutsideDomain { hole: i })?;
-        match cdt.treg[t as usize] {
+        match cdt.aux[t as usize].reg {
             EXTERIOR => return Err(InputError::HoleOutsideDomain { hole: i }.into()),
             HOLE => continue,
             _ => {}
         }
-        cdt.treg[t as usize] = HOLE;
+        cdt.aux[t as usize].reg = HOLE;
         stack.push(t);
         cdt.flood(&mut stack, HOLE);
     }
     for (i, reg) in pslg.regions.iter().enumerate() {
         let t =
             seed_triangle(cdt, reg.point).ok_or(InputError::RegionOutsideDomain { region: i })?;
-        if matches!(cdt.treg[t as usize], EXTERIOR | HOLE) {
+        if matches!(cdt.aux[t as usize].reg, EXTERIOR | HOLE) {
             return Err(InputError::RegionOutsideDomain { region: i }.into());
         }
-        cdt.treg[t as usize] = i as u32;
+        cdt.aux[t as usize].reg = i as u32;
         stack.push(t);
         cdt.flood(&mut stack, i as u32);
     }
@@ -874,7 +874,7 @@ fn seed_triangle(cdt: &Cdt, p: [f64; 2]) -> Option<u32> {
     for i in 0..3 {
         let a = cdt.pts[v[(i + 1) % 3] as usize];
         let b = cdt.pts[v[(i + 2) % 3] as usize];
-        if orient2d(a, b, p) == 0.0 && cdt.ts[t as usize][i] != NONE {
+        if orient2d(a, b, p) == 0.0 && cdt.aux[t as usize].s[i] != NONE {
             return None;
         }
     }
@@ -890,7 +890,7 @@ fn output(r: &mut Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriM
     let complete = r.complete;
     let cdt = &mut r.cdt;
     let in_domain = |cdt: &Cdt, t: u32| {
-        let reg = cdt.treg[t as usize];
+        let reg = cdt.aux[t as usize].reg;
         cdt.alive(t) && reg != EXTERIOR && reg != HOLE && !cdt.is_ghost(t)
     };
     let nv = cdt.pts.len();
@@ -973,7 +973,7 @@ fn output(r: &mut Refiner, n: usize, pslg: &Pslg, opts: &Options) -> Result<TriM
     let mut attrs = Vec::new();
     if opts.region_attributes {
         attrs.reserve(ntri as usize);
-        for (&k, &reg) in tmap.iter().zip(&cdt.treg) {
+        for (&k, reg) in tmap.iter().zip(cdt.aux.iter().map(|a| a.reg)) {
             if k != NONE {
                 attrs.push(if reg == NO_REGION {
                     0.0

@@ -24,7 +24,7 @@ impl<G: Geometry> Cdt<G> {
             }
             budget -= 1;
             let (t1, i) = ((h / 3) as usize, (h % 3) as usize);
-            if self.tv[t1][0] == NONE || self.ts[t1][i] != NONE {
+            if self.tv[t1][0] == NONE || self.aux[t1].s[i] != NONE {
                 continue;
             }
             let tw = self.tn[t1][i];
@@ -43,10 +43,10 @@ impl<G: Geometry> Cdt<G> {
                 continue;
             }
             // Outer edges: A = (w, p) and B = (p, u) of t1; C = (u, q) and D = (q, w) of t2.
-            let (a, sa) = (self.tn[t1][next(i)], self.ts[t1][next(i)]);
-            let (b, sb) = (self.tn[t1][prev(i)], self.ts[t1][prev(i)]);
-            let (c, sc) = (self.tn[t2][next(j)], self.ts[t2][next(j)]);
-            let (d, sd) = (self.tn[t2][prev(j)], self.ts[t2][prev(j)]);
+            let (a, sa) = (self.tn[t1][next(i)], self.aux[t1].s[next(i)]);
+            let (b, sb) = (self.tn[t1][prev(i)], self.aux[t1].s[prev(i)]);
+            let (c, sc) = (self.tn[t2][next(j)], self.aux[t2].s[next(j)]);
+            let (d, sd) = (self.tn[t2][prev(j)], self.aux[t2].s[prev(j)]);
             let (t1u, t2u) = (t1 as u32, t2 as u32);
             // New t1 = (p, u, q): edges (u, q) = C, (q, p) = diagonal, (p, u) = B.
             // New t2 = (q, w, p): edges (w, p) = A, (p, q) = diagonal, (q, w) = D.
@@ -54,10 +54,10 @@ impl<G: Geometry> Cdt<G> {
             self.tv[t2] = [q, w, p];
             self.tn[t1] = [c, 3 * t2u + 1, b];
             self.tn[t2] = [a, 3 * t1u + 1, d];
-            self.ts[t1] = [sc, NONE, sb];
-            self.ts[t2] = [sa, NONE, sd];
-            self.tflat[t1] = false;
-            self.tflat[t2] = false;
+            self.aux[t1].s = [sc, NONE, sb];
+            self.aux[t2].s = [sa, NONE, sd];
+            self.aux[t1].flat = false;
+            self.aux[t2].flat = false;
             for (outer, me) in [
                 (c, 3 * t1u),
                 (b, 3 * t1u + 2),
@@ -104,7 +104,7 @@ impl<G: Geometry> Cdt<G> {
                 let h = (3 * t + i) as u32;
                 let tw = self.tn[t][i];
                 // Each edge once (from its lower half-edge); walls and open edges stay.
-                if self.ts[t][i] != NONE || tw == NONE || tw < h || self.is_ghost(tw / 3) {
+                if self.aux[t].s[i] != NONE || tw == NONE || tw < h || self.is_ghost(tw / 3) {
                     continue;
                 }
                 let (p, u, w) = (self.tv[t][i], self.tv[t][next(i)], self.tv[t][prev(i)]);

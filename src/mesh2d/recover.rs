@@ -155,7 +155,7 @@ impl<G: Geometry> Cdt<G> {
         // The crossed half-edge, directed from its right end to its left end.
         let mut h = 3 * t0 + k0 as u32;
         for _ in 0..self.tv.len() + 1 {
-            let sh = self.ts[(h / 3) as usize][(h % 3) as usize];
+            let sh = self.aux[(h / 3) as usize].s[(h % 3) as usize];
             if sh != NONE {
                 return Err(Recovery::Blocked(sh));
             }
@@ -253,23 +253,27 @@ impl<G: Geometry> Cdt<G> {
     fn commit_with(&mut self, rec: &mut Scratch, a: VertexId, b: VertexId, s: SegId) -> Recovery {
         // The crossed triangles must all carry one region label (they do before
         // classification; afterwards a mixed set means a region border: leave it).
-        let label = self.treg[rec.crossed[0] as usize];
-        if rec.crossed.iter().any(|&t| self.treg[t as usize] != label) {
+        let label = self.aux[rec.crossed[0] as usize].reg;
+        if rec
+            .crossed
+            .iter()
+            .any(|&t| self.aux[t as usize].reg != label)
+        {
             return Recovery::Failed;
         }
         let mark = self.ready_stamps();
         for &t in &rec.crossed {
-            self.stamp[t as usize] = mark;
+            self.aux[t as usize].stamp = mark;
         }
         rec.border.clear();
         for &t in &rec.crossed {
             for i in 0..3 {
                 let tw = self.tn[t as usize][i];
-                if tw != NONE && self.stamp[(tw / 3) as usize] == mark {
+                if tw != NONE && self.aux[(tw / 3) as usize].stamp == mark {
                     continue;
                 }
                 let (f, to) = self.edge_ends(3 * t + i as u32);
-                rec.border.push((key(f, to), tw, self.ts[t as usize][i]));
+                rec.border.push((key(f, to), tw, self.aux[t as usize].s[i]));
             }
         }
         rec.border.sort_unstable_by_key(|e| e.0);
@@ -321,16 +325,16 @@ impl<G: Geometry> Cdt<G> {
         for &t in rec.crossed.iter().skip(rec.tris.len()) {
             self.tv[t as usize] = [NONE; 3];
             self.tn[t as usize] = [NONE; 3];
-            self.ts[t as usize] = [NONE; 3];
+            self.aux[t as usize].s = [NONE; 3];
             self.free.push(t);
         }
         for (j, tri) in rec.tris.iter().enumerate() {
             let t = slots[j] as usize;
             self.tv[t] = *tri;
             self.tn[t] = [NONE; 3];
-            self.ts[t] = [NONE; 3];
-            self.treg[t] = label;
-            self.tflat[t] = false;
+            self.aux[t].s = [NONE; 3];
+            self.aux[t].reg = label;
+            self.aux[t].flat = false;
         }
         for &(k, hn) in &rec.halves {
             let t = slots[(hn / 3) as usize];
@@ -338,7 +342,7 @@ impl<G: Geometry> Cdt<G> {
             let (tu, i) = (t as usize, (hn % 3) as usize);
             if let Ok(p) = rec.border.binary_search_by_key(&k, |e| e.0) {
                 let (_, outer, seg) = rec.border[p];
-                self.ts[tu][i] = seg;
+                self.aux[tu].s[i] = seg;
                 self.tn[tu][i] = outer;
                 if outer != NONE {
                     self.tn[(outer / 3) as usize][(outer % 3) as usize] = h;

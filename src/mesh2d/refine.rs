@@ -935,7 +935,7 @@ impl<'a> Refiner<'a> {
 
     /// Queues triangle `t` if it must be split (too large, or skinny and not exempt).
     fn push_if_bad(&mut self, t: TriId) {
-        let reg = self.cdt.treg[t as usize];
+        let reg = self.cdt.aux[t as usize].reg;
         if reg == EXTERIOR || reg == HOLE || self.cdt.is_ghost(t) {
             return;
         }
@@ -992,7 +992,7 @@ impl<'a> Refiner<'a> {
         } else {
             2
         };
-        let ts = self.cdt.ts[t as usize];
+        let ts = self.cdt.aux[t as usize].s;
         let (x, y) = (v[(k + 1) % 3], v[(k + 2) % 3]);
         // The edges at vertex k are edges k+1 and k+2. A triangle spanning the corner between
         // two whole input segments is split all the same: the shells have not reached it.

@@ -82,6 +82,31 @@ pub struct Seg {
     pub fixed: bool,
 }
 
+/// Per-triangle data besides corners and links, in one record: a cavity search reads a
+/// neighbour's mark, then its flatness, then (in the fan) its segments and region, and one
+/// record makes that one cache miss instead of four.
+#[derive(Clone, Copy, Debug)]
+pub struct TriAux {
+    /// `s[i]`: the segment on edge `i`, or `NONE`.
+    pub s: [SegId; 3],
+    /// Region label (see [`EXTERIOR`], [`HOLE`], [`NO_REGION`]).
+    pub reg: u32,
+    /// Mark of cavity searches: equal to the search's epoch (inside) or the next (outside).
+    pub(super) stamp: u32,
+    /// Made flat or inverted by rounding (see `same_input_segment`).
+    pub(super) flat: bool,
+}
+
+impl TriAux {
+    /// A fresh slot's record (stamp 0, which no epoch equals).
+    pub const FRESH: TriAux = TriAux {
+        s: [NONE; 3],
+        reg: NO_REGION,
+        stamp: 0,
+        flat: false,
+    };
+}
+
 /// The triangulation, its segments and reusable scratch space.
 pub struct Cdt<G: Geometry = Plane> {
     /// The exact predicates.
@@ -98,10 +123,8 @@ pub struct Cdt<G: Geometry = Plane> {
     pub tv: Vec<[VertexId; 3]>,
     /// `tn[t][i]`: the twin half-edge (`3t' + j`) across edge `i` of `t`.
     pub tn: Vec<[u32; 3]>,
-    /// `ts[t][i]`: the segment on edge `i` of `t`, or `NONE`.
-    pub ts: Vec<[SegId; 3]>,
-    /// Region label per triangle (see [`EXTERIOR`], [`HOLE`], [`NO_REGION`]).
-    pub treg: Vec<u32>,
+    /// The rest of each triangle's record: segments, region, search mark, flatness.
+    pub aux: Vec<TriAux>,
     pub(super) free: Vec<TriId>,
     /// Subsegments.
     pub segs: Vec<Seg>,
@@ -111,16 +134,12 @@ pub struct Cdt<G: Geometry = Plane> {
     pub seg_queued: Vec<bool>,
     /// Triangles created by the last successful insertion.
     pub new_tris: Vec<TriId>,
-    /// Per-slot marks of cavity searches; sized lazily by [`Cdt::ready_stamps`] (a bulk
-    /// triangulation never needs them).
-    pub(super) stamp: Vec<u32>,
+    /// The epoch pair of the current cavity search (see [`TriAux::stamp`]).
     pub(super) epoch: u32,
     cavity: Vec<TriId>,
     boundary: Vec<u32>,
     breg: Vec<u32>,
     bflat: Vec<bool>,
-    /// Triangles made flat or inverted by rounding (see `same_input_segment`).
-    pub(super) tflat: Vec<bool>,
     bedge: Vec<(VertexId, VertexId, SegId)>,
     /// Endpoints of each input segment (to recognise points on one input segment).
     pub inseg_ends: Vec<[VertexId; 2]>,
@@ -203,20 +222,17 @@ impl<G: Geometry> Cdt<G> {
             ghost: n as u32,
             tv: Vec::with_capacity(cap),
             tn: Vec::with_capacity(cap),
-            ts: Vec::with_capacity(cap),
-            treg: Vec::with_capacity(cap),
+            aux: Vec::with_capacity(cap),
             free: Vec::new(),
             segs: Vec::new(),
             split_queue: Vec::new(),
             seg_queued: Vec::new(),
             new_tris: Vec::new(),
-            stamp: Vec::new(),
             epoch: 0,
             cavity: Vec::new(),
             boundary: Vec::new(),
             breg: Vec::new(),
             bflat: Vec::new(),
-            tflat: Vec::new(),
             bedge: Vec::new(),
             inseg_ends: Vec::new(),
             vmark: Vec::new(),
@@ -260,9 +276,7 @@ impl<G: Geometry> Cdt<G> {
         let t = self.tv.len() as TriId;
         self.tv.push([NONE; 3]);
         self.tn.push([NONE; 3]);
-        self.ts.push([NONE; 3]);
-        self.treg.push(NO_REGION);
-        self.tflat.push(false);
+        self.aux.push(TriAux::FRESH);
         t
     }
 
@@ -332,15 +346,15 @@ impl<G: Geometry> Cdt<G> {
     /// The segment on half-edge `h`, or `NONE`.
     #[inline]
     pub fn seg_at(&self, h: u32) -> SegId {
-        self.ts[(h / 3) as usize][(h % 3) as usize]
+        self.aux[(h / 3) as usize].s[(h % 3) as usize]
     }
 
     /// Marks (or clears, with `NONE`) the segment on half-edge `h` and its twin.
     pub fn set_seg(&mut self, h: u32, s: SegId) {
         let tw = self.twin(h);
-        self.ts[(h / 3) as usize][(h % 3) as usize] = s;
+        self.aux[(h / 3) as usize].s[(h % 3) as usize] = s;
         if tw != NONE {
-            self.ts[(tw / 3) as usize][(tw % 3) as usize] = s;
+            self.aux[(tw / 3) as usize].s[(tw % 3) as usize] = s;
         }
     }
 
@@ -369,14 +383,14 @@ impl<G: Geometry> Cdt<G> {
             let Seg { a, b, .. } = self.segs[s];
             if let Some(h) = self.find_edge(a, b) {
                 let tw = self.twin(h);
-                let outside = |t: u32| matches!(self.treg[t as usize], EXTERIOR | HOLE);
+                let outside = |t: u32| matches!(self.aux[t as usize].reg, EXTERIOR | HOLE);
                 if outside(h / 3) && (tw == NONE || outside(tw / 3)) {
                     self.segs[s].a = NONE;
                 }
             }
         }
         for t in 0..self.tv.len() {
-            if self.tv[t][0] == NONE || !matches!(self.treg[t], EXTERIOR | HOLE) {
+            if self.tv[t][0] == NONE || !matches!(self.aux[t].reg, EXTERIOR | HOLE) {
                 continue;
             }
             for i in 0..3 {
@@ -509,16 +523,16 @@ impl<G: Geometry> Cdt<G> {
         while let Some(t) = stack.pop() {
             for i in 0..3 {
                 let tw = self.tn[t as usize][i];
-                if self.ts[t as usize][i] != NONE || tw == NONE {
+                if self.aux[t as usize].s[i] != NONE || tw == NONE {
                     continue;
                 }
                 let n = tw / 3;
-                let cur = self.treg[n as usize];
+                let cur = self.aux[n as usize].reg;
                 if cur == label || (label != EXTERIOR && cur == EXTERIOR) {
                     continue;
                 }
                 if label == EXTERIOR || label == HOLE || cur != HOLE {
-                    self.treg[n as usize] = label;
+                    self.aux[n as usize].reg = label;
                     stack.push(n);
                 }
             }
@@ -543,7 +557,7 @@ impl<G: Geometry> Cdt<G> {
             let b = self.p(v[prev(k)]);
             let o = self.geom.orient(a, b, p);
             o > 0.0 || (o == 0.0 && self.geom.strictly_between(a, b, p))
-        } else if self.tflat[t as usize] {
+        } else if self.aux[t as usize].flat {
             // A rounding-flat sliver (three points of one input segment): decide with its true
             // orientation, so the cavity search sees the geometry the coordinates really have.
             let (a, b, c) = (self.p(v[0]), self.p(v[1]), self.p(v[2]));
@@ -595,7 +609,7 @@ impl<G: Geometry> Cdt<G> {
                 let a = self.p(v[next(i)]);
                 let b = self.p(v[prev(i)]);
                 if self.geom.orient(a, b, p) < 0.0 {
-                    let s = self.ts[t as usize][i];
+                    let s = self.aux[t as usize].s[i];
                     let tw = self.tn[t as usize][i];
                     if (stop_at_walls && s != NONE) || tw == NONE {
                         // After carving, every open edge is a segment.
@@ -656,21 +670,19 @@ impl<G: Geometry> Cdt<G> {
     /// values a fresh slot gets (after [`Cdt::insert_bulk`]).
     pub fn sync_aux(&mut self) {
         let n = self.tv.len();
-        self.ts.resize(n, [NONE; 3]);
-        self.treg.resize(n, NO_REGION);
-        self.tflat.resize(n, false);
+        self.aux.resize(n, TriAux::FRESH);
     }
 
     /// Gives every slot a stamp (new slots get 0, which no epoch equals) and starts a new
     /// epoch pair; returns the first epoch of the pair.
     pub(super) fn ready_stamps(&mut self) -> u32 {
-        if self.stamp.len() < self.tv.len() {
-            self.stamp.resize(self.tv.len(), 0);
+        if self.aux.len() < self.tv.len() {
+            self.sync_aux();
         }
         self.epoch = self.epoch.wrapping_add(2);
         if self.epoch < 2 {
             // Wrapped around: clear the stamps so old values cannot alias the new epoch.
-            self.stamp.iter_mut().for_each(|s| *s = 0);
+            self.aux.iter_mut().for_each(|a| a.stamp = 0);
             self.epoch = 2;
         }
         self.epoch
@@ -918,10 +930,10 @@ impl<G: Geometry> Cdt<G> {
                     if found == NONE {
                         return Inserted::LostWalk;
                     }
-                    self.stamp[found as usize] = inside;
+                    self.aux[found as usize].stamp = inside;
                     self.cavity.push(found);
                 } else {
-                    self.stamp[t as usize] = inside;
+                    self.aux[t as usize].stamp = inside;
                     self.cavity.push(t);
                 }
             }
@@ -929,10 +941,10 @@ impl<G: Geometry> Cdt<G> {
                 let tw = self.twin(h);
                 split_half = h;
                 for t in [h / 3, tw / 3] {
-                    if t == NONE / 3 || self.stamp[t as usize] == inside {
+                    if t == NONE / 3 || self.aux[t as usize].stamp == inside {
                         continue;
                     }
-                    self.stamp[t as usize] = inside;
+                    self.aux[t as usize].stamp = inside;
                     self.cavity.push(t);
                     // A point on the edge is inside both circles; one rounded a hair beyond
                     // the edge, past a cap thinner than the rounding (a short edge, a far
@@ -946,8 +958,8 @@ impl<G: Geometry> Cdt<G> {
                 // both triangles of the edge (beyond a third, nearly flat one): seed the
                 // triangle that really contains it too, so the cavity is star-shaped from it.
                 if let Ok(t) = self.locate(h / 3, p, false) {
-                    if self.stamp[t as usize] != inside && self.conflict(t, p) {
-                        self.stamp[t as usize] = inside;
+                    if self.aux[t as usize].stamp != inside && self.conflict(t, p) {
+                        self.aux[t as usize].stamp = inside;
                         self.cavity.push(t);
                     }
                 }
@@ -980,12 +992,12 @@ impl<G: Geometry> Cdt<G> {
                     let st = if tw == NONE {
                         0
                     } else {
-                        self.stamp[n as usize]
+                        self.aux[n as usize].stamp
                     };
                     if st == inside {
                         continue;
                     }
-                    let s = self.ts[t as usize][i];
+                    let s = self.aux[t as usize].s[i];
                     if s != NONE || tw == NONE {
                         let (a, b) = self.edge_ends(h);
                         if s != NONE && self.geom.encroaches(self.p(a), self.p(b), p) {
@@ -1010,13 +1022,13 @@ impl<G: Geometry> Cdt<G> {
                             || self.geom.orient(self.p(a), self.p(b), p) >= 0.0
                     };
                     if st != outside && visible && self.conflict(n, p) {
-                        self.stamp[n as usize] = inside;
+                        self.aux[n as usize].stamp = inside;
                         self.cavity.push(n);
                     } else {
                         if !visible && st != outside && self.conflict(n, p) {
                             self.unsettled = true;
                         }
-                        self.stamp[n as usize] = outside;
+                        self.aux[n as usize].stamp = outside;
                         self.boundary.push(h);
                     }
                 }
@@ -1061,14 +1073,14 @@ impl<G: Geometry> Cdt<G> {
                     }
                     taken += 1;
                     let n = tw / 3;
-                    self.stamp[n as usize] = inside;
+                    self.aux[n as usize].stamp = inside;
                     self.cavity.push(n);
                     self.unsettled = true;
-                    let stamp = &self.stamp;
+                    let aux = &self.aux;
                     let tn = &self.tn;
                     self.boundary.retain(|&e| {
                         let o = tn[(e / 3) as usize][(e % 3) as usize];
-                        o == NONE || stamp[(o / 3) as usize] != inside
+                        o == NONE || aux[(o / 3) as usize].stamp != inside
                     });
                     continue 'grow;
                 }
@@ -1103,9 +1115,9 @@ impl<G: Geometry> Cdt<G> {
             let h = self.boundary[j];
             let t_in = (h / 3) as usize;
             let i = (h % 3) as usize;
-            self.breg.push(self.treg[t_in]);
+            self.breg.push(self.aux[t_in].reg);
             let (q, r) = self.edge_ends(h);
-            self.bedge.push((q, r, self.ts[t_in][i]));
+            self.bedge.push((q, r, self.aux[t_in].s[i]));
             self.boundary[j] = self.tn[t_in][i];
         }
         for j in 0..nb {
@@ -1119,9 +1131,9 @@ impl<G: Geometry> Cdt<G> {
             self.new_tris.push(t);
             let tu = t as usize;
             self.tv[tu] = [pv, q, r];
-            self.tflat[tu] = self.bflat[j];
-            self.ts[tu] = [s, NONE, NONE];
-            self.treg[tu] = self.breg[j];
+            self.aux[tu].flat = self.bflat[j];
+            self.aux[tu].s = [s, NONE, NONE];
+            self.aux[tu].reg = self.breg[j];
             self.tn[tu] = [outer, NONE, NONE];
             if outer != NONE {
                 self.tn[(outer / 3) as usize][(outer % 3) as usize] = 3 * t;

@@ -160,7 +160,7 @@ impl FacetTriangulation {
         let mut stack = Vec::new();
         for t in 0..cdt.num_slots() as u32 {
             if cdt.alive(t) && cdt.is_ghost(t) {
-                cdt.treg[t as usize] = EXTERIOR;
+                cdt.aux[t as usize].reg = EXTERIOR;
                 stack.push(t);
             }
         }
@@ -174,7 +174,7 @@ impl FacetTriangulation {
             }
             // `s` lies in `t` or on its boundary: on an edge, the triangle across is a
             // candidate too.
-            let mut pick = (cdt.treg[t as usize] == NO_REGION).then_some(t);
+            let mut pick = (cdt.aux[t as usize].reg == NO_REGION).then_some(t);
             for i in 0..3 {
                 let h = 3 * t + i;
                 let (x, y) = cdt.edge_ends(h);
@@ -182,13 +182,13 @@ impl FacetTriangulation {
                 if pick.is_none()
                     && cdt.orient_at(x, y, s) == 0.0
                     && !cdt.is_ghost(n)
-                    && cdt.treg[n as usize] == NO_REGION
+                    && cdt.aux[n as usize].reg == NO_REGION
                 {
                     pick = Some(n);
                 }
             }
             if let Some(t) = pick {
-                cdt.treg[t as usize] = HOLE;
+                cdt.aux[t as usize].reg = HOLE;
                 stack.push(t);
                 cdt.flood(&mut stack, HOLE);
             }
@@ -197,7 +197,7 @@ impl FacetTriangulation {
 
     /// Whether slot `t` is a triangle of the region (after [`FacetTriangulation::classify`]).
     fn in_region(cdt: &Cdt, t: u32) -> bool {
-        cdt.alive(t) && !cdt.is_ghost(t) && cdt.treg[t as usize] == NO_REGION
+        cdt.alive(t) && !cdt.is_ghost(t) && cdt.aux[t as usize].reg == NO_REGION
     }
 
     /// The triangles of the region (after [`FacetTriangulation::classify`]).

@@ -718,3 +718,58 @@ fn a_point_set_comes_back_in_input_names() {
         other => panic!("{other:?}"),
     }
 }
+
+/// `find_edge` names the same half-edge, the one directed to its first vertex, whichever
+/// triangle around that vertex `vtri` keeps (cavities are seeded from it, so a side that
+/// followed `vtri` would make the mesh depend on how `vtri` was last rebuilt).
+#[test]
+fn find_edge_does_not_depend_on_the_triangle_kept_per_vertex() {
+    let mut z: u64 = 7;
+    let pts: Vec<[f64; 2]> = (0..40)
+        .map(|_| {
+            z = z
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            [
+                (z >> 40) as f64 / 16.0,
+                ((z >> 16) & 0xffffff) as f64 / 16.0,
+            ]
+        })
+        .collect();
+    let mut cdt = store::Cdt::new(&pts);
+    let o = crate::predicates::orient2d(pts[0], pts[1], pts[2]);
+    assert_ne!(o, 0.0);
+    if o > 0.0 {
+        cdt.init_triangle(0, 1, 2);
+    } else {
+        cdt.init_triangle(0, 2, 1);
+    }
+    for v in 3..pts.len() as u32 {
+        assert!(matches!(cdt.insert_bulk(v), store::Inserted::Yes(_)));
+    }
+    cdt.sync_aux();
+    let n = pts.len() as u32;
+    let mut checked = 0;
+    for a in 0..n {
+        let fan: Vec<u32> = (0..cdt.tv.len() as u32)
+            .filter(|&t| cdt.alive(t) && cdt.tv[t as usize].contains(&a))
+            .collect();
+        let ends: std::collections::BTreeSet<u32> = fan
+            .iter()
+            .flat_map(|&t| cdt.tv[t as usize])
+            .filter(|&b| b != a && b < n)
+            .collect();
+        for b in ends {
+            let mut found = std::collections::BTreeSet::new();
+            for &t in &fan {
+                cdt.vtri[a as usize] = t;
+                let h = cdt.find_edge(a, b).expect("an edge of the mesh");
+                assert_eq!(cdt.edge_ends(h), (b, a), "edge {a}-{b} from triangle {t}");
+                found.insert(h);
+            }
+            assert_eq!(found.len(), 1, "edge {a}-{b}: {found:?}");
+            checked += fan.len();
+        }
+    }
+    assert!(checked > 500, "{checked}");
+}
